@@ -1,0 +1,140 @@
+// The only C++ in jade: libdraco 1.5.5 has no C API.
+#include "draco_shim.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <memory>
+
+#include <draco/compression/decode.h>
+#include <draco/mesh/mesh.h>
+
+namespace {
+
+void set_err(char *err, size_t errlen, const char *msg)
+{
+    if (err && errlen)
+        std::snprintf(err, errlen, "%s", msg);
+}
+
+// Buffers rows so the pipe sees few large writes.
+struct Out {
+    Out(jd_draco_write_fn w, void *u) : write(w), user(u) {}
+    jd_draco_write_fn write;
+    void *user;
+    unsigned char buf[1 << 16];
+    size_t n = 0;
+    bool ok = true;
+    void put(const void *p, size_t len)
+    {
+        const unsigned char *s = static_cast<const unsigned char *>(p);
+        while (ok && len) {
+            size_t k = sizeof buf - n < len ? sizeof buf - n : len;
+            std::memcpy(buf + n, s, k);
+            n += k; s += k; len -= k;
+            if (n == sizeof buf) flush();
+        }
+    }
+    void flush()
+    {
+        if (ok && n && write(user, buf, n) != 0) ok = false;
+        n = 0;
+    }
+};
+
+// Streams one attribute as `comps` floats per point; missing components are 0.
+bool put_attribute(Out &out, const draco::PointAttribute *att, uint32_t nv, int comps)
+{
+    float v[4];
+    for (uint32_t i = 0; i < nv; ++i) {
+        draco::AttributeValueIndex avi = att->mapped_index(draco::PointIndex(i));
+        // A hostile file can map a point past the attribute's values.
+        if (avi.value() >= att->size()) return false;
+        std::memset(v, 0, sizeof v);
+        if (!att->ConvertValue<float>(avi, static_cast<int8_t>(comps), v)) return false;
+        out.put(v, sizeof(float) * comps);
+    }
+    return true;
+}
+
+int decode(const void *data, size_t size, uint32_t max_vertices, uint32_t max_faces,
+           jd_draco_write_fn write, void *user, char *err, size_t errlen)
+{
+    draco::DecoderBuffer buffer;
+    buffer.Init(static_cast<const char *>(data), size);
+    draco::Decoder decoder;
+    auto result = decoder.DecodeMeshFromBuffer(&buffer);
+    if (!result.ok()) {
+        char msg[256];
+        std::snprintf(msg, sizeof msg, "draco could not decode it: %s",
+                      result.status().error_msg());
+        set_err(err, errlen, msg);
+        return -1;
+    }
+    std::unique_ptr<draco::Mesh> mesh = std::move(result).value();
+    const uint32_t nv = mesh->num_points();
+    const uint32_t nf = mesh->num_faces();
+    if (nv == 0 || nf == 0) {
+        set_err(err, errlen, "the mesh is empty (no vertices or no faces)");
+        return -1;
+    }
+    if (nv > max_vertices || nf > max_faces) {
+        char msg[160];
+        std::snprintf(msg, sizeof msg, "decoded %u vertices and %u faces, over the limit of %u / %u",
+                      nv, nf, max_vertices, max_faces);
+        set_err(err, errlen, msg);
+        return -1;
+    }
+    const draco::PointAttribute *pos = mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+    if (!pos || pos->num_components() < 2) {
+        set_err(err, errlen, "the mesh has no usable position attribute");
+        return -1;
+    }
+    const draco::PointAttribute *nrm = mesh->GetNamedAttribute(draco::GeometryAttribute::NORMAL);
+    if (nrm && nrm->num_components() != 3) nrm = nullptr;
+    const draco::PointAttribute *uv = mesh->GetNamedAttribute(draco::GeometryAttribute::TEX_COORD);
+    if (uv && uv->num_components() < 2) uv = nullptr;
+
+    std::unique_ptr<Out> out(new Out(write, user));
+    jd_draco_record_header h = {JD_DRACO_RECORD_MAGIC, nv, nf,
+                                (nrm ? uint32_t(JD_DRACO_HAS_NORMALS) : 0u) |
+                                    (uv ? uint32_t(JD_DRACO_HAS_UVS) : 0u)};
+    out->put(&h, sizeof h);
+    if (!put_attribute(*out, pos, nv, 3) || (nrm && !put_attribute(*out, nrm, nv, 3)) ||
+        (uv && !put_attribute(*out, uv, nv, 2))) {
+        set_err(err, errlen, "an attribute maps a vertex to a value that does not exist");
+        return -1;
+    }
+    for (uint32_t f = 0; f < nf; ++f) {
+        const draco::Mesh::Face &face = mesh->face(draco::FaceIndex(f));
+        uint32_t idx[3] = {face[0].value(), face[1].value(), face[2].value()};
+        out->put(idx, sizeof idx);
+    }
+    out->flush();
+    if (!out->ok) {
+        set_err(err, errlen, "could not hand the decoded mesh back (pipe closed)");
+        return -1;
+    }
+    return 0;
+}
+
+} // namespace
+
+extern "C" int jd_draco_decode(const void *data, size_t size, uint32_t max_vertices,
+                               uint32_t max_faces, jd_draco_write_fn write, void *user,
+                               char *err, size_t errlen)
+{
+    try {
+        return decode(data, size, max_vertices, max_faces, write, user, err, errlen);
+    } catch (const std::bad_alloc &) {
+        set_err(err, errlen, "draco ran out of memory while decoding");
+    } catch (const std::exception &e) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg, "draco threw: %s", e.what());
+        set_err(err, errlen, msg);
+    } catch (...) {
+        set_err(err, errlen, "draco threw an unknown exception");
+    }
+    return -1;
+}

@@ -1,0 +1,71 @@
+#include "material.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Jensen, Marschner, Levoy, Hanrahan 2001, Table; the same numbers as pbrt. */
+const jd_material jd_materials[] = {
+    {"apple", {2.29f, 2.39f, 1.97f}, {0.0030f, 0.0034f, 0.046f}, 1.3f},
+    {"chicken1", {0.15f, 0.21f, 0.38f}, {0.015f, 0.077f, 0.19f}, 1.3f},
+    {"chicken2", {0.19f, 0.25f, 0.32f}, {0.018f, 0.088f, 0.20f}, 1.3f},
+    {"cream", {7.38f, 5.47f, 3.15f}, {0.0002f, 0.0028f, 0.0163f}, 1.3f},
+    {"ketchup", {0.18f, 0.07f, 0.03f}, {0.061f, 0.97f, 1.45f}, 1.3f},
+    {"marble", {2.19f, 2.62f, 3.00f}, {0.0021f, 0.0041f, 0.0071f}, 1.5f},
+    {"potato", {0.68f, 0.70f, 0.55f}, {0.0024f, 0.0090f, 0.12f}, 1.3f},
+    {"skimmilk", {0.70f, 1.22f, 1.90f}, {0.0014f, 0.0025f, 0.0142f}, 1.3f},
+    {"skin1", {0.74f, 0.88f, 1.01f}, {0.032f, 0.17f, 0.48f}, 1.3f},
+    {"skin2", {1.09f, 1.59f, 1.79f}, {0.013f, 0.070f, 0.145f}, 1.3f},
+    {"wholemilk", {2.55f, 3.21f, 3.77f}, {0.0011f, 0.0024f, 0.014f}, 1.3f},
+};
+const int jd_material_count = (int)(sizeof jd_materials / sizeof jd_materials[0]);
+
+const jd_material *jd_material_find(const char *name)
+{
+    for (int i = 0; i < jd_material_count; i++)
+        if (strcmp(jd_materials[i].name, name) == 0) return &jd_materials[i];
+    return NULL;
+}
+
+double jd_dipole_fdr(double eta)
+{
+    return -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
+}
+
+double jd_dipole_rd_total(double alpha, double A)
+{
+    double s = sqrt(3.0 * (1.0 - alpha));
+    return 0.5 * alpha * (1.0 + exp(-(4.0 / 3.0) * A * s)) * exp(-s);
+}
+
+void jd_dipole_init(jd_dipole *d, const float sigma_s[3], const float sigma_a[3], float eta,
+                    float density)
+{
+    d->fdr = jd_dipole_fdr(eta);
+    d->A = (1.0 + d->fdr) / (1.0 - d->fdr);
+    for (int c = 0; c < 3; c++) {
+        double ss = sigma_s[c] * (double)density, sa = sigma_a[c] * (double)density;
+        d->sigma_t[c] = sa + ss;
+        d->alpha[c] = d->sigma_t[c] > 0 ? ss / d->sigma_t[c] : 0.0;
+        d->sigma_tr[c] = sqrt(3.0 * sa * d->sigma_t[c]);
+        d->zr[c] = d->sigma_t[c] > 0 ? 1.0 / d->sigma_t[c] : 0.0;
+        d->zv[c] = d->zr[c] * (1.0 + 4.0 * d->A / 3.0);
+        d->rd_total[c] = jd_dipole_rd_total(d->alpha[c], d->A);
+    }
+}
+
+double jd_dipole_tail(const jd_dipole *d, int c, double t)
+{
+    double dr = sqrt(t * t + d->zr[c] * d->zr[c]), dv = sqrt(t * t + d->zv[c] * d->zv[c]);
+    if (dr <= 0 || dv <= 0) return 0.0;
+    return 0.5 * d->alpha[c] *
+           (d->zr[c] / dr * exp(-d->sigma_tr[c] * dr) + d->zv[c] / dv * exp(-d->sigma_tr[c] * dv));
+}
+
+double jd_dipole_rd(const jd_dipole *d, int c, double r)
+{
+    double dr = sqrt(r * r + d->zr[c] * d->zr[c]), dv = sqrt(r * r + d->zv[c] * d->zv[c]);
+    double s = d->sigma_tr[c];
+    return d->alpha[c] / (4.0 * M_PI) *
+           (d->zr[c] * (1.0 + s * dr) * exp(-s * dr) / (dr * dr * dr) +
+            d->zv[c] * (1.0 + s * dv) * exp(-s * dv) / (dv * dv * dv));
+}

@@ -1,0 +1,33 @@
+/* Measured scattering materials (Jensen et al. 2001) and the dipole terms
+ * derived from them. Coefficients are per RGB channel in mm^-1. */
+#ifndef JD_MATERIAL_H
+#define JD_MATERIAL_H
+
+typedef struct jd_material {
+    const char *name;
+    float sigma_s[3]; /* reduced scattering sigma_s' */
+    float sigma_a[3]; /* absorption */
+    float eta;
+} jd_material;
+
+extern const jd_material jd_materials[];
+extern const int jd_material_count;
+const jd_material *jd_material_find(const char *name);
+
+typedef struct jd_dipole {
+    double sigma_t[3], alpha[3], sigma_tr[3], zr[3], zv[3];
+    double fdr, A;
+    double rd_total[3];
+} jd_dipole;
+
+/* density scales both coefficients. */
+void jd_dipole_init(jd_dipole *d, const float sigma_s[3], const float sigma_a[3], float eta,
+                    float density);
+double jd_dipole_fdr(double eta);
+double jd_dipole_rd_total(double alpha, double A);
+/* Exitance from unit irradiance on every entry point at distance >= t mm. */
+double jd_dipole_tail(const jd_dipole *d, int channel, double t_mm);
+/* Diffusion profile Rd(r), r in mm. */
+double jd_dipole_rd(const jd_dipole *d, int channel, double r_mm);
+
+#endif

@@ -1,0 +1,175 @@
+#include "mesh.h"
+
+#include <math.h>
+#include <string.h>
+
+uint32_t jd_mesh_index(const jd_mesh *m, uint32_t i)
+{
+    return m->index_size == 2 ? ((const uint16_t *)m->indices)[i] : ((const uint32_t *)m->indices)[i];
+}
+
+jd_result jd_mesh_validate(const jd_mesh *m, const char *name, jd_error *err)
+{
+    if (m->num_vertices == 0 || m->num_indices == 0 || m->num_indices % 3)
+        return jd_fail(err, JD_ERR_FORMAT, "%s: mesh has no triangles", name);
+    for (uint32_t i = 0; i < m->num_indices; i++) {
+        uint32_t v = jd_mesh_index(m, i);
+        if (v >= m->num_vertices)
+            return jd_fail(err, JD_ERR_FORMAT,
+                           "%s: face %u refers to vertex %u but the mesh has %u vertices", name,
+                           i / 3, v, m->num_vertices);
+    }
+    for (uint32_t i = 0; i < 3 * m->num_vertices; i++) {
+        float p = m->positions[i];
+        if (!isfinite(p) || fabsf(p) > 1e6f)
+            return jd_fail(err, JD_ERR_FORMAT, "%s: vertex %u has an unusable position (%g)",
+                           name, i / 3, (double)p);
+    }
+    return JD_OK;
+}
+
+void jd_mesh_compute_bounds(jd_mesh *m)
+{
+    const float *p = m->positions;
+    jd_vec3 lo = jd_v3(p[0], p[1], p[2]), hi = lo;
+    for (uint32_t i = 1; i < m->num_vertices; i++) {
+        const float *q = p + 3 * i;
+        lo.x = fminf(lo.x, q[0]); lo.y = fminf(lo.y, q[1]); lo.z = fminf(lo.z, q[2]);
+        hi.x = fmaxf(hi.x, q[0]); hi.y = fmaxf(hi.y, q[1]); hi.z = fmaxf(hi.z, q[2]);
+    }
+    m->bmin = lo;
+    m->bmax = hi;
+}
+
+static void normalize_all(jd_mesh *m)
+{
+    for (uint32_t i = 0; i < m->num_vertices; i++) {
+        float *n = m->normals + 3 * i;
+        float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (l > 1e-20f && isfinite(l)) { n[0] /= l; n[1] /= l; n[2] /= l; }
+        else { n[0] = 0; n[1] = 0; n[2] = 1; }
+    }
+}
+
+void jd_mesh_compute_normals(jd_mesh *m)
+{
+    memset(m->normals, 0, sizeof(float) * 3 * m->num_vertices);
+    for (uint32_t t = 0; t + 2 < m->num_indices; t += 3) {
+        uint32_t ia = jd_mesh_index(m, t), ib = jd_mesh_index(m, t + 1), ic = jd_mesh_index(m, t + 2);
+        const float *a = m->positions + 3 * ia, *b = m->positions + 3 * ib, *c = m->positions + 3 * ic;
+        /* The unnormalised cross product is twice the area: area weighting for free. */
+        jd_vec3 n = jd_v3_cross(jd_v3(b[0] - a[0], b[1] - a[1], b[2] - a[2]),
+                                jd_v3(c[0] - a[0], c[1] - a[1], c[2] - a[2]));
+        uint32_t v[3] = {ia, ib, ic};
+        for (int k = 0; k < 3; k++) {
+            float *o = m->normals + 3 * v[k];
+            o[0] += n.x; o[1] += n.y; o[2] += n.z;
+        }
+    }
+    normalize_all(m);
+}
+
+void jd_mesh_fix_normals(jd_mesh *m)
+{
+    for (uint32_t i = 0; i < 3 * m->num_vertices; i++)
+        if (!isfinite(m->normals[i])) { jd_mesh_compute_normals(m); return; }
+    normalize_all(m);
+}
+
+jd_result jd_mesh_set_indices(jd_mesh *m, const uint32_t *idx, uint32_t count, int allow_32,
+                              jd_arena *a, jd_error *err)
+{
+    if (m->num_vertices <= 65536) {
+        uint16_t *o = jd_arena_alloc(a, sizeof(uint16_t) * count, 4, "mesh indices", err);
+        if (!o) return err ? err->code : JD_ERR_BUDGET;
+        for (uint32_t i = 0; i < count; i++)
+            o[i] = (uint16_t)(idx[i] < m->num_vertices ? idx[i] : 0xffffu);
+        m->indices = o;
+        m->index_size = 2;
+    } else {
+        if (!allow_32)
+            return jd_fail(err, JD_ERR_UNSUPPORTED,
+                           "mesh has %u vertices; above 65,536 it needs 32-bit indices "
+                           "(OES_element_index_uint), which this device lacks",
+                           m->num_vertices);
+        uint32_t *o = jd_arena_alloc(a, sizeof(uint32_t) * count, 4, "mesh indices", err);
+        if (!o) return err ? err->code : JD_ERR_BUDGET;
+        memcpy(o, idx, sizeof(uint32_t) * count);
+        m->indices = o;
+        m->index_size = 4;
+    }
+    m->num_indices = count;
+    return JD_OK;
+}
+
+jd_result jd_mesh_build_proxy(const jd_mesh *src, int cells, jd_arena *a, jd_mesh *out,
+                              jd_error *err)
+{
+    if (cells < 2) cells = 2;
+    if (cells > 64) cells = 64;
+    size_t top = jd_arena_top_mark(a);
+    size_t ncell = (size_t)cells * cells * cells;
+    uint32_t *cell_of = jd_arena_alloc_top(a, sizeof(uint32_t) * src->num_vertices, 4, "proxy scratch", err);
+    uint32_t *slot = jd_arena_alloc_top(a, sizeof(uint32_t) * ncell, 4, "proxy grid", err);
+    if (!cell_of || !slot) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
+
+    jd_vec3 ext = jd_v3_sub(src->bmax, src->bmin);
+    float e = fmaxf(ext.x, fmaxf(ext.y, ext.z));
+    float inv = e > 0 ? (float)cells / (e * 1.0001f) : 0.0f;
+    uint32_t nv = 0;
+    for (uint32_t i = 0; i < src->num_vertices; i++) {
+        const float *p = src->positions + 3 * i;
+        int ix = (int)((p[0] - src->bmin.x) * inv), iy = (int)((p[1] - src->bmin.y) * inv),
+            iz = (int)((p[2] - src->bmin.z) * inv);
+        ix = ix < 0 ? 0 : ix >= cells ? cells - 1 : ix;
+        iy = iy < 0 ? 0 : iy >= cells ? cells - 1 : iy;
+        iz = iz < 0 ? 0 : iz >= cells ? cells - 1 : iz;
+        uint32_t c = (uint32_t)(ix + cells * (iy + cells * iz));
+        if (!slot[c]) slot[c] = ++nv; /* 0 means unused */
+        cell_of[i] = slot[c] - 1;
+    }
+    if (nv > 65535) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_LIMIT, "proxy has too many vertices"); }
+
+    memset(out, 0, sizeof *out);
+    out->num_vertices = nv;
+    out->positions = jd_arena_alloc(a, sizeof(float) * 3 * nv, 16, "proxy positions", err);
+    out->normals = jd_arena_alloc(a, sizeof(float) * 3 * nv, 16, "proxy normals", err);
+    float *count = jd_arena_alloc_top(a, sizeof(float) * nv, 4, "proxy scratch", err);
+    if (!out->positions || !out->normals || !count) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
+    for (uint32_t i = 0; i < src->num_vertices; i++) {
+        uint32_t c = cell_of[i];
+        for (int k = 0; k < 3; k++) {
+            out->positions[3 * c + k] += src->positions[3 * i + k];
+            out->normals[3 * c + k] += src->normals[3 * i + k];
+        }
+        count[c] += 1.0f;
+    }
+    for (uint32_t c = 0; c < nv; c++)
+        for (int k = 0; k < 3; k++) out->positions[3 * c + k] /= count[c];
+    normalize_all(out);
+
+    /* Count surviving triangles before allocating them. */
+    uint32_t ntri = 0;
+    for (uint32_t t = 0; t + 2 < src->num_indices; t += 3) {
+        uint32_t x = cell_of[jd_mesh_index(src, t)], y = cell_of[jd_mesh_index(src, t + 1)],
+                 z = cell_of[jd_mesh_index(src, t + 2)];
+        ntri += x != y && y != z && x != z;
+    }
+    uint16_t *idx = jd_arena_alloc(a, sizeof(uint16_t) * 3 * (ntri ? ntri : 1), 4, "proxy indices", err);
+    if (!idx) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
+    uint32_t k = 0;
+    for (uint32_t t = 0; t + 2 < src->num_indices; t += 3) {
+        uint32_t x = cell_of[jd_mesh_index(src, t)], y = cell_of[jd_mesh_index(src, t + 1)],
+                 z = cell_of[jd_mesh_index(src, t + 2)];
+        if (x != y && y != z && x != z) {
+            idx[k++] = (uint16_t)x; idx[k++] = (uint16_t)y; idx[k++] = (uint16_t)z;
+        }
+    }
+    out->indices = idx;
+    out->index_size = 2;
+    out->num_indices = k;
+    out->bmin = src->bmin;
+    out->bmax = src->bmax;
+    jd_arena_top_reset(a, top);
+    return JD_OK;
+}

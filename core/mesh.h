@@ -1,0 +1,43 @@
+/* A triangle mesh as the renderer consumes it, living in the arena. */
+#ifndef JD_MESH_H
+#define JD_MESH_H
+
+#include <stdint.h>
+#include "arena.h"
+#include "vmath.h"
+
+typedef struct jd_mesh {
+    uint32_t num_vertices;
+    uint32_t num_indices;   /* 3 per triangle */
+    float *positions;       /* 3 per vertex */
+    float *normals;         /* 3 per vertex, unit length */
+    float *uvs;             /* 2 per vertex, or NULL */
+    void *indices;          /* uint16_t when index_size == 2, else uint32_t */
+    int index_size;
+    int normals_computed;   /* the file had none */
+    jd_vec3 bmin, bmax;
+} jd_mesh;
+
+uint32_t jd_mesh_index(const jd_mesh *m, uint32_t i);
+
+/* Every index in range and every position finite and within +-1e6. */
+jd_result jd_mesh_validate(const jd_mesh *m, const char *name, jd_error *err);
+void jd_mesh_compute_bounds(jd_mesh *m);
+/* Area-weighted vertex normals; degenerate vertices get +Z. */
+void jd_mesh_compute_normals(jd_mesh *m);
+/* Normalises normals read from a file; zero or non-finite ones are recomputed. */
+void jd_mesh_fix_normals(jd_mesh *m);
+
+/* Copies 32-bit indices into the mesh, narrowing to 16 bits when every vertex
+ * fits; otherwise keeps 32 bits if allow_32 (the caller checked
+ * OES_element_index_uint), else fails. */
+jd_result jd_mesh_set_indices(jd_mesh *m, const uint32_t *idx, uint32_t count, int allow_32,
+                              jd_arena *a, jd_error *err);
+
+/* A coarse stand-in made by vertex clustering on a grid of `cells` per axis,
+ * for passes whose output is low-resolution or blurred anyway (cube capture,
+ * light depth, the spread funnel). 16-bit indices always. */
+jd_result jd_mesh_build_proxy(const jd_mesh *src, int cells, jd_arena *a, jd_mesh *out,
+                              jd_error *err);
+
+#endif

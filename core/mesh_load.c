@@ -1,0 +1,302 @@
+#include "mesh_load.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "draco_header.h"
+#include "draco_shim.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define JD_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define JD_ASAN 1
+#endif
+#endif
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+static int write_all(void *user, const void *data, size_t n)
+{
+    int fd = *(int *)user;
+    const char *p = data;
+    while (n) {
+        ssize_t k = write(fd, p, n);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) return -1;
+        p += k;
+        n -= (size_t)k;
+    }
+    return 0;
+}
+
+#ifndef JD_ASAN
+/* The address space the child already has, so its limit can add a budget on top. */
+static size_t current_vm_bytes(void)
+{
+    char buf[64] = "";
+    int fd = open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return 0;
+    ssize_t n = read(fd, buf, sizeof buf - 1);
+    close(fd);
+    unsigned long pages = 0;
+    for (ssize_t i = 0; i < n && buf[i] >= '0' && buf[i] <= '9'; i++) pages = pages * 10 + (unsigned long)(buf[i] - '0');
+    return (size_t)pages * (size_t)sysconf(_SC_PAGESIZE);
+}
+#endif
+
+static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int data_fd,
+                       int err_fd)
+{
+    signal(SIGPIPE, SIG_IGN);
+    struct rlimit cpu = {(rlim_t)(d->timeout_ms / 1000 + 2), (rlim_t)(d->timeout_ms / 1000 + 3)};
+    setrlimit(RLIMIT_CPU, &cpu);
+#ifndef JD_ASAN /* ASan reserves terabytes of shadow; the count caps still hold */
+    size_t vm = current_vm_bytes();
+    if (vm) {
+        struct rlimit as = {vm + d->decode_memory_bytes, vm + d->decode_memory_bytes};
+        setrlimit(RLIMIT_AS, &as);
+    }
+#endif
+    char msg[256] = "";
+    int rc = jd_draco_decode(buf, n, d->max_vertices, d->max_faces, write_all, &data_fd, msg,
+                             sizeof msg);
+    if (rc != 0) write_all(&err_fd, msg, strlen(msg));
+    _exit(rc == 0 ? 0 : 1);
+}
+
+typedef struct reader {
+    int fd;
+    double deadline;
+    const char *name;
+    int timeout_ms;
+} reader;
+
+/* Reads exactly n bytes before the deadline; 0 on success. */
+static jd_result read_exact(reader *r, void *dst, size_t n, int *eof, jd_error *err)
+{
+    char *p = dst;
+    *eof = 0;
+    while (n) {
+        int left = (int)(r->deadline - now_ms());
+        if (left <= 0)
+            return jd_fail(err, JD_ERR_TIMEOUT, "%s: decoding took longer than %d ms; refused",
+                           r->name, r->timeout_ms);
+        struct pollfd pfd = {r->fd, POLLIN, 0};
+        int k = poll(&pfd, 1, left);
+        if (k < 0 && errno == EINTR) continue;
+        if (k == 0) continue;
+        ssize_t got = read(r->fd, p, n);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) { *eof = 1; return JD_ERR_FORMAT; }
+        p += got;
+        n -= (size_t)got;
+    }
+    return JD_OK;
+}
+
+static jd_result read_file(const jd_load_desc *d, jd_arena *a, uint8_t **buf, size_t *n,
+                           jd_error *err)
+{
+    int fd = open(d->path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return jd_fail(err, JD_ERR_IO, "%s: cannot open: %s", d->path, strerror(errno));
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(fd);
+        return jd_fail(err, JD_ERR_IO, "%s: not a regular file", d->path);
+    }
+    if ((size_t)st.st_size > d->max_file_bytes) {
+        close(fd);
+        return jd_fail(err, JD_ERR_LIMIT, "%s: file is %lld bytes, over the limit of %zu",
+                       d->path, (long long)st.st_size, d->max_file_bytes);
+    }
+    size_t size = (size_t)st.st_size;
+    uint8_t *p = jd_arena_alloc_top(a, size ? size : 1, 16, "the mesh file", err);
+    if (!p) { close(fd); return JD_ERR_BUDGET; }
+    size_t got = 0;
+    while (got < size) {
+        ssize_t k = read(fd, p + got, size - got);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) {
+            close(fd);
+            return jd_fail(err, JD_ERR_IO, "%s: read failed after %zu bytes", d->path, got);
+        }
+        got += (size_t)k;
+    }
+    close(fd);
+    *buf = p;
+    *n = size;
+    return JD_OK;
+}
+
+static jd_result reap(pid_t pid, int kill_it, int *status)
+{
+    if (kill_it) kill(pid, SIGKILL);
+    while (waitpid(pid, status, 0) < 0)
+        if (errno != EINTR) return JD_ERR_CRASH;
+    return JD_OK;
+}
+
+static jd_result child_failure(const jd_load_desc *d, int status, int err_fd, jd_error *err)
+{
+    char msg[256] = "";
+    ssize_t k = read(err_fd, msg, sizeof msg - 1);
+    if (k > 0) msg[k] = 0;
+    if (WIFSIGNALED(status)) {
+        int sig = WTERMSIG(status);
+        if (sig == SIGXCPU || sig == SIGALRM)
+            return jd_fail(err, JD_ERR_TIMEOUT, "%s: decoding used more than its CPU time; refused", d->path);
+        return jd_fail(err, JD_ERR_CRASH, "%s: the Draco decoder crashed (signal %d, %s); the file is corrupt",
+                       d->path, sig, strsignal(sig));
+    }
+    if (strstr(msg, "out of memory"))
+        return jd_fail(err, JD_ERR_LIMIT, "%s: decoding needed more than %zu MiB; refused", d->path,
+                       d->decode_memory_bytes >> 20);
+    if (msg[0]) return jd_fail(err, JD_ERR_FORMAT, "%s: %s", d->path, msg);
+    return jd_fail(err, JD_ERR_FORMAT, "%s: the Draco decoder failed (exit %d)", d->path,
+                   WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+}
+
+jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out,
+                             jd_load_stats *stats, jd_error *err)
+{
+    jd_load_desc d = *desc;
+    if (!d.path) return jd_fail(err, JD_ERR_ARG, "no mesh path given");
+    if (!d.max_file_bytes) d.max_file_bytes = 64u << 20;
+    if (!d.max_vertices) d.max_vertices = 4000000;
+    if (!d.max_faces) d.max_faces = 4000000;
+    if (d.timeout_ms <= 0) d.timeout_ms = 1500;
+    if (!d.decode_memory_bytes) d.decode_memory_bytes = (size_t)192 << 20;
+    jd_load_stats st = {0};
+    memset(out, 0, sizeof *out);
+
+    size_t top = jd_arena_top_mark(a), bottom = jd_arena_mark(a);
+    uint8_t *buf = NULL;
+    size_t n = 0;
+    jd_result r = read_file(&d, a, &buf, &n, err);
+    if (r) return r;
+    st.file_bytes = n;
+
+    jd_draco_info info;
+    r = jd_draco_peek(buf, n, d.path, &info, err);
+    if (r) goto fail;
+    st.declared_faces = info.num_faces;
+    if (info.num_faces > d.max_faces || info.num_vertices > d.max_vertices) {
+        r = jd_fail(err, JD_ERR_LIMIT, "%s: declares %u faces and %u vertices, over the limit of %u / %u; refused",
+                    d.path, info.num_faces, info.num_vertices, d.max_faces, d.max_vertices);
+        goto fail;
+    }
+
+    int data_pipe[2], err_pipe[2];
+    if (pipe2(data_pipe, O_CLOEXEC) != 0) { r = jd_fail(err, JD_ERR_IO, "pipe: %s", strerror(errno)); goto fail; }
+    if (pipe2(err_pipe, O_CLOEXEC) != 0) {
+        close(data_pipe[0]); close(data_pipe[1]);
+        r = jd_fail(err, JD_ERR_IO, "pipe: %s", strerror(errno));
+        goto fail;
+    }
+    double t0 = now_ms();
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(data_pipe[0]); close(data_pipe[1]); close(err_pipe[0]); close(err_pipe[1]);
+        r = jd_fail(err, JD_ERR_IO, "fork: %s", strerror(errno));
+        goto fail;
+    }
+    if (pid == 0) {
+        close(data_pipe[0]);
+        close(err_pipe[0]);
+        child_main(&d, buf, n, data_pipe[1], err_pipe[1]);
+    }
+    close(data_pipe[1]);
+    close(err_pipe[1]);
+
+    reader rd = {data_pipe[0], t0 + d.timeout_ms, d.path, d.timeout_ms};
+    jd_draco_record_header h;
+    int eof = 0, status = 0;
+    r = read_exact(&rd, &h, sizeof h, &eof, err);
+    if (r == JD_OK && (h.magic != JD_DRACO_RECORD_MAGIC || h.num_vertices == 0 ||
+                       h.num_vertices > d.max_vertices || h.num_faces > d.max_faces ||
+                       h.num_faces == 0)) {
+        r = jd_fail(err, JD_ERR_FORMAT, "%s: decoder returned an implausible mesh header", d.path);
+    }
+    uint32_t *idx32 = NULL;
+    if (r == JD_OK) {
+        out->num_vertices = h.num_vertices;
+        size_t nv = h.num_vertices;
+        out->positions = jd_arena_alloc(a, sizeof(float) * 3 * nv, 16, "mesh positions", err);
+        out->normals = jd_arena_alloc(a, sizeof(float) * 3 * nv, 16, "mesh normals", err);
+        if (h.flags & JD_DRACO_HAS_UVS)
+            out->uvs = jd_arena_alloc(a, sizeof(float) * 2 * nv, 16, "mesh uvs", err);
+        idx32 = jd_arena_alloc_top(a, sizeof(uint32_t) * 3 * (size_t)h.num_faces, 16, "mesh indices (scratch)", err);
+        if (!out->positions || !out->normals || !idx32 || ((h.flags & JD_DRACO_HAS_UVS) && !out->uvs))
+            r = JD_ERR_BUDGET;
+    }
+    if (r == JD_OK) r = read_exact(&rd, out->positions, sizeof(float) * 3 * h.num_vertices, &eof, err);
+    if (r == JD_OK && (h.flags & JD_DRACO_HAS_NORMALS))
+        r = read_exact(&rd, out->normals, sizeof(float) * 3 * h.num_vertices, &eof, err);
+    if (r == JD_OK && (h.flags & JD_DRACO_HAS_UVS))
+        r = read_exact(&rd, out->uvs, sizeof(float) * 2 * h.num_vertices, &eof, err);
+    if (r == JD_OK) r = read_exact(&rd, idx32, sizeof(uint32_t) * 3 * (size_t)h.num_faces, &eof, err);
+    st.decode_ms = now_ms() - t0;
+
+    reap(pid, r != JD_OK && !eof, &status);
+    if (eof || (r == JD_OK && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)))
+        r = child_failure(&d, status, err_pipe[0], err);
+    close(data_pipe[0]);
+    close(err_pipe[0]);
+    if (r) goto fail;
+
+    /* Nothing from the decoder is trusted: check before narrowing indices. */
+    for (uint32_t i = 0; i < 3 * h.num_faces; i++)
+        if (idx32[i] >= h.num_vertices) {
+            r = jd_fail(err, JD_ERR_FORMAT,
+                        "%s: face %u refers to vertex %u but the mesh has %u vertices; refused",
+                        d.path, i / 3, idx32[i], h.num_vertices);
+            goto fail;
+        }
+    r = jd_mesh_set_indices(out, idx32, 3 * h.num_faces, d.allow_32bit_indices, a, err);
+    if (r) {
+        if (r == JD_ERR_UNSUPPORTED) {
+            jd_error inner = *err;
+            jd_fail(err, r, "%s: %s", d.path, inner.msg);
+        }
+        goto fail;
+    }
+    r = jd_mesh_validate(out, d.path, err);
+    if (r) goto fail;
+    if (h.flags & JD_DRACO_HAS_NORMALS) {
+        jd_mesh_fix_normals(out);
+    } else {
+        jd_mesh_compute_normals(out);
+        out->normals_computed = 1;
+    }
+    jd_mesh_compute_bounds(out);
+    jd_arena_top_reset(a, top);
+    if (stats) *stats = st;
+    return JD_OK;
+
+fail:
+    if (r == JD_ERR_BUDGET && err && !strstr(err->msg, d.path)) {
+        jd_error inner = *err;
+        jd_fail(err, r, "%s: %s", d.path, inner.msg);
+    }
+    jd_arena_top_reset(a, top);
+    jd_arena_reset(a, bottom);
+    memset(out, 0, sizeof *out);
+    if (stats) *stats = st;
+    return r;
+}

@@ -1,0 +1,33 @@
+/* Loading a Draco mesh from a file that may be corrupt or hostile. */
+#ifndef JD_MESH_LOAD_H
+#define JD_MESH_LOAD_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "mesh.h"
+
+/* Zero fields take the defaults in brackets. */
+typedef struct jd_load_desc {
+    const char *path;
+    size_t max_file_bytes;      /* [64 MiB] */
+    uint32_t max_vertices;      /* [4,000,000] */
+    uint32_t max_faces;         /* [4,000,000] */
+    int timeout_ms;             /* [1500] wall time for the whole decode */
+    size_t decode_memory_bytes; /* [192 MiB] address space the decoder may add */
+    int allow_32bit_indices;    /* the GL device has OES_element_index_uint */
+} jd_load_desc;
+
+typedef struct jd_load_stats {
+    double decode_ms;   /* fork to last byte received */
+    size_t file_bytes;
+    uint32_t declared_faces;
+} jd_load_stats;
+
+/* libdraco runs in a child process under an address-space and CPU limit and a
+ * wall-clock deadline; its output streams back through a pipe straight into
+ * the arena, and is validated (indices, finite positions) before anyone sees
+ * it. Call before creating threads (a GL context): the child forks. */
+jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out,
+                             jd_load_stats *stats, jd_error *err);
+
+#endif
