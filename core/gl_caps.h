@@ -1,0 +1,26 @@
+/* What the GL device can do, queried once, possibly clamped by a profile. */
+#ifndef JD_GL_CAPS_H
+#define JD_GL_CAPS_H
+
+#include "jd_result.h"
+
+typedef struct jd_gl_caps {
+    char vendor[64], renderer[128], version[128], glsl[96];
+    int max_texture_size, max_renderbuffer_size, max_cube_map_size;
+    int max_vertex_attribs, max_vertex_uniform_vectors, max_fragment_uniform_vectors;
+    int max_varying_vectors, max_texture_units, max_vertex_texture_units;
+    int max_viewport_w, max_viewport_h;
+    /* glGetShaderPrecisionFormat(FRAGMENT, HIGH_FLOAT): precision bits 0 = no highp */
+    int frag_highp_precision, frag_highp_range;
+    int frag_mediump_precision, frag_mediump_range;
+    int ext_element_index_uint, ext_disjoint_timer_query, ext_depth_texture,
+        ext_texture_float, ext_packed_depth_stencil, ext_rgb8_rgba8, ext_texture_npot,
+        ext_standard_derivatives;
+    int num_extensions;
+} jd_gl_caps;
+
+/* proc returns GL entry points by name (from the platform); may be NULL. */
+jd_result jd_gl_caps_query(jd_gl_caps *caps, jd_error *err);
+int jd_gl_has_extension(const char *name);
+
+#endif

@@ -1,0 +1,108 @@
+#include "gl_program.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *jd_shader_text(const char *name)
+{
+    for (int i = 0; i < jd_shader_source_count; i++)
+        if (strcmp(jd_shader_sources[i].name, name) == 0 ||
+            strcmp(strrchr(jd_shader_sources[i].name, '/') + 1, name) == 0)
+            return jd_shader_sources[i].text;
+    return NULL;
+}
+
+/* Driver logs say "0:12(5): error" (Mesa), "ERROR: 0:12:" (ANGLE, Mali) or
+ * "0(12) : error" (NVIDIA): the first number is the source string, the second
+ * the line. */
+static void log_location(const char *log, int *string, int *line)
+{
+    *string = 0;
+    *line = 0;
+    for (const char *p = log; p && *p; p++)
+        if (p[0] >= '0' && p[0] <= '9' && (p[1] == ':' || p[1] == '(') && p[2] >= '0' && p[2] <= '9' &&
+            (p == log || p[-1] < '0' || p[-1] > '9')) {
+            *string = p[0] - '0';
+            *line = atoi(p + 2);
+            return;
+        }
+}
+
+static const char *skip_version(const char *text)
+{
+    if (strncmp(text, "#version", 8) != 0) return text;
+    const char *nl = strchr(text, '\n');
+    return nl ? nl + 1 : text + strlen(text);
+}
+
+/* Fragment shaders get a default precision (highp only where the packing
+ * asks for it and the device has it) and the packing helpers as source
+ * string 1; the shader's own file is string 0, its lines numbered as in the
+ * file. */
+static jd_result compile(GLenum type, const char *name, const char *defines, GLuint *out,
+                         jd_error *err)
+{
+    const char *text = jd_shader_text(name);
+    const char *pack = jd_shader_text("shaders_es2/pack.glsl");
+    if (!text || !pack) return jd_fail(err, JD_ERR_ARG, "shader %s is not embedded in this build", name);
+    const char *parts[8];
+    int n = 0;
+    parts[n++] = "#version 100\n";
+    parts[n++] = defines ? defines : "";
+    if (type == GL_FRAGMENT_SHADER) {
+        parts[n++] = "#if JD_PACK_HIGHP\nprecision highp float;\nprecision highp sampler2D;\n#else\n"
+                     "precision mediump float;\nprecision mediump sampler2D;\n#endif\n"
+                     "#line 1 1\n";
+        parts[n++] = pack;
+    }
+    parts[n++] = "\n#line 2 0\n";
+    parts[n++] = skip_version(text);
+    GLuint sh = glCreateShader(type);
+    glShaderSource(sh, n, parts, NULL);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        glGetShaderInfoLog(sh, sizeof log, NULL, log);
+        for (char *p = log; *p; p++)
+            if (*p == '\n') *p = ' ';
+        glDeleteShader(sh);
+        int string, line;
+        log_location(log, &string, &line);
+        return jd_fail(err, JD_ERR_GL, "%s:%d: shader does not compile: %s",
+                       string == 1 ? "shaders_es2/pack.glsl" : name, line, log);
+    }
+    *out = sh;
+    return JD_OK;
+}
+
+jd_result jd_program_build(const char *vs_name, const char *fs_name, const char *defines,
+                           const char *const *attribs, GLuint *out, jd_error *err)
+{
+    GLuint vs = 0, fs = 0;
+    jd_result r = compile(GL_VERTEX_SHADER, vs_name, defines, &vs, err);
+    if (r) return r;
+    r = compile(GL_FRAGMENT_SHADER, fs_name, defines, &fs, err);
+    if (r) { glDeleteShader(vs); return r; }
+    GLuint p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    for (GLuint i = 0; attribs && attribs[i]; i++) glBindAttribLocation(p, i, attribs[i]);
+    glLinkProgram(p);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        glGetProgramInfoLog(p, sizeof log, NULL, log);
+        for (char *q = log; *q; q++)
+            if (*q == '\n') *q = ' ';
+        glDeleteProgram(p);
+        return jd_fail(err, JD_ERR_GL, "%s + %s: program does not link: %s", vs_name, fs_name, log);
+    }
+    *out = p;
+    return JD_OK;
+}

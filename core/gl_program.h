@@ -1,0 +1,24 @@
+/* Shader programs built from the GLSL ES 1.00 files embedded at build time. */
+#ifndef JD_GL_PROGRAM_H
+#define JD_GL_PROGRAM_H
+
+#include "gl.h"
+#include "jd_result.h"
+
+typedef struct jd_shader_source {
+    const char *name; /* path in the source tree, e.g. shaders_es2/shade.frag */
+    const char *text;
+} jd_shader_source;
+
+extern const jd_shader_source jd_shader_sources[];
+extern const int jd_shader_source_count;
+
+const char *jd_shader_text(const char *name);
+
+/* Builds vs+fs with `defines` ("#define X 1\n" lines) inserted after #version.
+ * Attributes are bound in order of the NULL-terminated `attribs`. A failure
+ * names the file and line and carries the driver's log. */
+jd_result jd_program_build(const char *vs_name, const char *fs_name, const char *defines,
+                           const char *const *attribs, GLuint *out, jd_error *err);
+
+#endif

@@ -1,0 +1,720 @@
+#include "renderer.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "gl.h"
+#include "gl_program.h"
+#include "sh.h"
+#include "vmath.h"
+
+#define SH_BLOCK 8
+#define BLUR_TAPS 8
+
+typedef struct target {
+    GLuint tex, fbo, depth;
+    int w, h;
+} target;
+
+typedef struct shade_prog {
+    GLuint id;
+    GLint mvp, light_mvp, eye, sh, box_min, box_max, inv_eta, inset;
+    GLint light_dir, albedo, light_color, shading, depth, tail, f0, a0_scale;
+    GLint a1, a2, inv_viewport, w0, w1, w2;
+} shade_prog;
+
+#define TAIL_SIZE 256
+
+struct jd_renderer {
+    jd_renderer_desc d;
+    int highp;
+    jd_mesh proxy, capture_proxy;
+    GLuint mesh_vbo, mesh_ibo, proxy_vbo, proxy_ibo, cap_vbo, cap_ibo, quad_vbo;
+    GLuint tail_tex;
+    uint8_t *tail_px;     /* TAIL_SIZE RGBA texels, rebuilt when the material changes */
+    float tail_key[9];
+    GLenum mesh_index_type;
+    shade_prog shade[JD_MODE_COUNT], a0;
+    GLuint depth_prog, capture_prog, project_prog, reduce_faces_prog, reduce_final_prog, blur_prog;
+    GLint depth_mvp;
+    GLint cap_mvp, cap_light_mvp, cap_light_dir, cap_bias, cap_depth, cap_light_color;
+    GLint proj_atlas, rf_src, rf_texel, rl_src, rl_texel;
+    GLint blur_src, blur_step, blur_inv;
+    target light, atlas, sh1, sh2, sh3, spread0, spread_tmp, spread1, spread2;
+    size_t target_bytes;
+    float box_half;
+};
+
+const char *jd_mode_name(jd_mode m)
+{
+    static const char *names[] = {"none", "single", "dual"};
+    return m >= 0 && m < JD_MODE_COUNT ? names[m] : "?";
+}
+
+int jd_mode_parse(const char *s, jd_mode *out)
+{
+    for (int m = 0; m < JD_MODE_COUNT; m++)
+        if (strcmp(s, jd_mode_name((jd_mode)m)) == 0) { *out = (jd_mode)m; return 1; }
+    return 0;
+}
+
+const char *jd_pass_name(int pass)
+{
+    static const char *names[] = {"light_depth", "capture", "sh_reduce", "spread", "main"};
+    return pass >= 0 && pass < JD_PASS_COUNT ? names[pass] : "?";
+}
+
+void jd_scene_defaults(jd_scene *s, const jd_material *m)
+{
+    memset(s, 0, sizeof *s);
+    s->mode = JD_MODE_DUAL;
+    s->cam_azimuth = 15;
+    s->cam_elevation = 35;
+    s->cam_distance = 2.7f;
+    s->fov_deg = 35;
+    s->light_azimuth = 170; /* behind the object: what translucency is about */
+    s->light_elevation = 35;
+    s->light_intensity = 1.0f;
+    s->ambient = 0.06f;
+    s->specular = 0.2f;
+    s->shininess = 40;
+    s->exposure = 1.0f;
+    if (!m) m = jd_material_find("marble");
+    memcpy(s->sigma_s, m->sigma_s, sizeof s->sigma_s);
+    memcpy(s->sigma_a, m->sigma_a, sizeof s->sigma_a);
+    s->eta = m->eta;
+    s->density = 1.0f;
+    s->gain = 1.0f;
+    s->background[0] = 0.05f;
+    s->background[1] = 0.055f;
+    s->background[2] = 0.065f;
+}
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+/* ---- start-up ---------------------------------------------------------- */
+
+static jd_result make_target(jd_renderer *r, target *t, int w, int h, int with_depth, int linear,
+                             const char *what, jd_error *err)
+{
+    const jd_gl_caps *c = r->d.caps;
+    if (w > c->max_texture_size || h > c->max_texture_size)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s target %dx%d exceeds the max texture size %d", what, w, h,
+                       c->max_texture_size);
+    t->w = w;
+    t->h = h;
+    glGenTextures(1, &t->tex);
+    glBindTexture(GL_TEXTURE_2D, t->tex);
+    GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    /* NPOT-safe in core ES 2.0: clamp and no mipmaps. */
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glGenFramebuffers(1, &t->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
+    r->target_bytes += (size_t)w * h * 4;
+    if (with_depth) {
+        glGenRenderbuffers(1, &t->depth);
+        glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, w, h);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
+        r->target_bytes += (size_t)w * h * 2;
+    }
+    GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE)
+        return jd_fail(err, JD_ERR_GL, "%s framebuffer %dx%d is incomplete (0x%x)", what, w, h, st);
+    return JD_OK;
+}
+
+static void free_target(target *t)
+{
+    if (t->fbo) glDeleteFramebuffers(1, &t->fbo);
+    if (t->tex) glDeleteTextures(1, &t->tex);
+    if (t->depth) glDeleteRenderbuffers(1, &t->depth);
+    memset(t, 0, sizeof *t);
+}
+
+/* Positions normalised to the bounding sphere (centre 0, radius 1) keep
+ * coordinates small for fp16 varyings; interleaved with normals. */
+static jd_result upload_mesh(const jd_mesh *m, jd_vec3 c, float inv_r, GLuint *vbo, GLuint *ibo,
+                             jd_arena *a, jd_error *err)
+{
+    size_t top = jd_arena_top_mark(a);
+    float *v = jd_arena_alloc_top(a, sizeof(float) * 6 * m->num_vertices, 16, "vertex upload scratch", err);
+    if (!v) return JD_ERR_BUDGET;
+    for (uint32_t i = 0; i < m->num_vertices; i++) {
+        const float *p = m->positions + 3 * i, *n = m->normals + 3 * i;
+        v[6 * i + 0] = (p[0] - c.x) * inv_r;
+        v[6 * i + 1] = (p[1] - c.y) * inv_r;
+        v[6 * i + 2] = (p[2] - c.z) * inv_r;
+        v[6 * i + 3] = n[0];
+        v[6 * i + 4] = n[1];
+        v[6 * i + 5] = n[2];
+    }
+    glGenBuffers(1, vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, *vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6 * m->num_vertices), v, GL_STATIC_DRAW);
+    glGenBuffers(1, ibo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, *ibo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)((size_t)m->index_size * m->num_indices), m->indices,
+                 GL_STATIC_DRAW);
+    jd_arena_top_reset(a, top);
+    return glGetError() == GL_NO_ERROR ? JD_OK : jd_fail(err, JD_ERR_GL, "mesh upload failed (out of GPU memory?)");
+}
+
+static const char *const mesh_attribs[] = {"a_position", "a_normal", NULL};
+static const char *const quad_attribs[] = {"a_corner", NULL};
+
+static jd_result build(const char *vs, const char *fs, const char *defines, const char *const *attribs,
+                       GLuint *out, jd_error *err)
+{
+    return jd_program_build(vs, fs, defines, attribs, out, err);
+}
+
+static void shade_locations(shade_prog *p)
+{
+    GLuint id = p->id;
+    p->mvp = glGetUniformLocation(id, "u_mvp");
+    p->light_mvp = glGetUniformLocation(id, "u_light_mvp");
+    p->eye = glGetUniformLocation(id, "u_eye");
+    p->sh = glGetUniformLocation(id, "u_sh");
+    p->box_min = glGetUniformLocation(id, "u_box_min");
+    p->box_max = glGetUniformLocation(id, "u_box_max");
+    p->inv_eta = glGetUniformLocation(id, "u_inv_eta");
+    p->inset = glGetUniformLocation(id, "u_inset");
+    p->light_dir = glGetUniformLocation(id, "u_light_dir");
+    p->albedo = glGetUniformLocation(id, "u_albedo");
+    p->light_color = glGetUniformLocation(id, "u_light_color");
+    p->shading = glGetUniformLocation(id, "u_shading");
+    p->depth = glGetUniformLocation(id, "u_depth");
+    p->tail = glGetUniformLocation(id, "u_tail");
+    p->f0 = glGetUniformLocation(id, "u_f0");
+    p->a0_scale = glGetUniformLocation(id, "u_a0_scale");
+    p->a1 = glGetUniformLocation(id, "u_a1");
+    p->a2 = glGetUniformLocation(id, "u_a2");
+    p->inv_viewport = glGetUniformLocation(id, "u_inv_viewport");
+    p->w0 = glGetUniformLocation(id, "u_w0");
+    p->w1 = glGetUniformLocation(id, "u_w1");
+    p->w2 = glGetUniformLocation(id, "u_w2");
+}
+
+static jd_result build_programs(jd_renderer *r, jd_error *err)
+{
+    char def[512];
+    int n = r->d.cube_size, nb = n / SH_BLOCK;
+    jd_result res;
+    for (int m = 0; m < JD_MODE_COUNT; m++) {
+        snprintf(def, sizeof def,
+                 "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n",
+                 r->highp, m != JD_MODE_NONE, m == JD_MODE_DUAL);
+        if ((res = build("shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->shade[m].id, err)))
+            return res;
+        shade_locations(&r->shade[m]);
+    }
+    snprintf(def, sizeof def,
+             "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n", r->highp);
+    if ((res = build("shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->a0.id, err))) return res;
+    shade_locations(&r->a0);
+
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n", r->highp);
+    if ((res = build("shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err))) return res;
+    r->depth_mvp = glGetUniformLocation(r->depth_prog, "u_light_mvp");
+    if ((res = build("shaders_es2/capture.vert", "shaders_es2/capture.frag", def, mesh_attribs, &r->capture_prog, err)))
+        return res;
+    r->cap_mvp = glGetUniformLocation(r->capture_prog, "u_mvp");
+    r->cap_light_mvp = glGetUniformLocation(r->capture_prog, "u_light_mvp");
+    r->cap_light_dir = glGetUniformLocation(r->capture_prog, "u_light_dir");
+    r->cap_bias = glGetUniformLocation(r->capture_prog, "u_bias");
+    r->cap_depth = glGetUniformLocation(r->capture_prog, "u_depth");
+    r->cap_light_color = glGetUniformLocation(r->capture_prog, "u_light_color");
+
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_N %d\n#define JD_B %d\n#define JD_NB %d\n",
+             r->highp, n, SH_BLOCK, nb);
+    if ((res = build("shaders_es2/quad.vert", "shaders_es2/sh_project.frag", def, quad_attribs, &r->project_prog, err)))
+        return res;
+    r->proj_atlas = glGetUniformLocation(r->project_prog, "u_atlas");
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, nb, nb);
+    if ((res = build("shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_faces_prog, err)))
+        return res;
+    r->rf_src = glGetUniformLocation(r->reduce_faces_prog, "u_src");
+    r->rf_texel = glGetUniformLocation(r->reduce_faces_prog, "u_src_texel");
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX 6\n#define JD_RY 1\n", r->highp);
+    if ((res = build("shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_final_prog, err)))
+        return res;
+    r->rl_src = glGetUniformLocation(r->reduce_final_prog, "u_src");
+    r->rl_texel = glGetUniformLocation(r->reduce_final_prog, "u_src_texel");
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n", BLUR_TAPS);
+    if ((res = build("shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->blur_prog, err))) return res;
+    r->blur_src = glGetUniformLocation(r->blur_prog, "u_src");
+    r->blur_step = glGetUniformLocation(r->blur_prog, "u_step");
+    r->blur_inv = glGetUniformLocation(r->blur_prog, "u_inv_2s2");
+    return JD_OK;
+}
+
+jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer **out, jd_error *err)
+{
+    if (!desc->mesh || !desc->caps) return jd_fail(err, JD_ERR_ARG, "renderer needs a mesh and the GL caps");
+    jd_renderer *r = jd_arena_alloc(a, sizeof *r, 16, "renderer", err);
+    if (!r) return JD_ERR_BUDGET;
+    r->d = *desc;
+    jd_renderer_desc *d = &r->d;
+    if (d->width <= 0) d->width = 512;
+    if (d->height <= 0) d->height = 512;
+    if (!d->cube_size) d->cube_size = 64;
+    if (!d->light_map_size) d->light_map_size = 256;
+    if (!d->proxy_cells) d->proxy_cells = 40;
+    if (!d->capture_cells) d->capture_cells = 24;
+    if (!d->spread_divisor) d->spread_divisor = 4;
+    if (d->cube_size < 8 || d->cube_size > 256 || d->cube_size % SH_BLOCK)
+        return jd_fail(err, JD_ERR_ARG, "cube size %d must be a multiple of %d from 8 to 256", d->cube_size, SH_BLOCK);
+    if (d->light_map_size < 16 || d->light_map_size > 2048)
+        return jd_fail(err, JD_ERR_ARG, "light map size %d must be 16..2048", d->light_map_size);
+    if (d->spread_divisor < 1 || d->spread_divisor > 16)
+        return jd_fail(err, JD_ERR_ARG, "spread divisor %d must be 1..16", d->spread_divisor);
+
+    int device_highp = d->caps->frag_highp_precision >= 23;
+    if (d->precision == JD_PRECISION_HIGHP && !device_highp)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "highp packing asked for, but this GPU has no fragment highp");
+    r->highp = d->precision == JD_PRECISION_AUTO ? device_highp : d->precision == JD_PRECISION_HIGHP;
+
+    if (d->mesh->index_size == 4 && !d->caps->ext_element_index_uint)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "mesh needs 32-bit indices but OES_element_index_uint is missing");
+    jd_result res = jd_mesh_build_proxy(d->mesh, d->proxy_cells, a, &r->proxy, err);
+    if (res) return res;
+    /* The 64x64 capture needs far fewer triangles than the light map. */
+    if ((res = jd_mesh_build_proxy(d->mesh, d->capture_cells, a, &r->capture_proxy, err))) return res;
+    r->tail_px = jd_arena_alloc(a, TAIL_SIZE * 4, 16, "dipole tail table", err);
+    if (!r->tail_px) return JD_ERR_BUDGET;
+
+    const jd_mesh *m = d->mesh;
+    jd_vec3 c = jd_v3_scale(jd_v3_add(m->bmin, m->bmax), 0.5f);
+    jd_vec3 ext = jd_v3_sub(m->bmax, m->bmin);
+    float radius = 0.5f * jd_v3_len(ext);
+    if (!(radius > 0)) radius = 1.0f;
+    r->box_half = 0.5f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius * 1.01f;
+    while (glGetError() != GL_NO_ERROR) {}
+    if ((res = upload_mesh(m, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err))) return res;
+    if ((res = upload_mesh(&r->proxy, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a, err))) return res;
+    if ((res = upload_mesh(&r->capture_proxy, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a, err))) return res;
+    glGenTextures(1, &r->tail_tex);
+    glBindTexture(GL_TEXTURE_2D, r->tail_tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, TAIL_SIZE, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    r->target_bytes += TAIL_SIZE * 4;
+    r->tail_key[0] = -1.0f; /* no table yet */
+    r->mesh_index_type = m->index_size == 2 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
+    static const float quad[] = {-1, -1, 1, -1, -1, 1, 1, 1};
+    glGenBuffers(1, &r->quad_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
+
+    if ((res = build_programs(r, err))) goto fail;
+
+    int n = d->cube_size, nb = n / SH_BLOCK;
+    int sw = (d->width + d->spread_divisor - 1) / d->spread_divisor;
+    int shh = (d->height + d->spread_divisor - 1) / d->spread_divisor;
+    if ((res = make_target(r, &r->light, d->light_map_size, d->light_map_size, 1, 0, "light depth", err)) ||
+        (res = make_target(r, &r->atlas, 3 * n, 2 * n, 1, 0, "cube capture", err)) ||
+        (res = make_target(r, &r->sh1, 6 * nb, 27 * nb, 0, 0, "SH projection", err)) ||
+        (res = make_target(r, &r->sh2, 6, 27, 0, 0, "SH reduction", err)) ||
+        (res = make_target(r, &r->sh3, 1, 27, 0, 0, "SH result", err)) ||
+        (res = make_target(r, &r->spread0, sw, shh, 1, 1, "spread A0", err)) ||
+        (res = make_target(r, &r->spread_tmp, sw, shh, 0, 1, "spread blur", err)) ||
+        (res = make_target(r, &r->spread1, sw, shh, 0, 1, "spread A1", err)) ||
+        (res = make_target(r, &r->spread2, sw, shh, 0, 1, "spread A2", err)))
+        goto fail;
+    glBindFramebuffer(GL_FRAMEBUFFER, d->target_fbo);
+    *out = r;
+    return JD_OK;
+fail:
+    jd_renderer_destroy(r);
+    return res;
+}
+
+void jd_renderer_destroy(jd_renderer *r)
+{
+    if (!r) return;
+    target *ts[] = {&r->light, &r->atlas, &r->sh1, &r->sh2, &r->sh3, &r->spread0, &r->spread_tmp, &r->spread1, &r->spread2};
+    for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++) free_target(ts[i]);
+    GLuint bufs[] = {r->mesh_vbo, r->mesh_ibo, r->proxy_vbo, r->proxy_ibo, r->cap_vbo, r->cap_ibo, r->quad_vbo};
+    glDeleteBuffers(7, bufs);
+    if (r->tail_tex) glDeleteTextures(1, &r->tail_tex);
+    for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
+    GLuint progs[] = {r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_faces_prog,
+                      r->reduce_final_prog, r->blur_prog};
+    for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
+    memset(r, 0, sizeof *r);
+}
+
+size_t jd_renderer_target_bytes(const jd_renderer *r) { return r->target_bytes; }
+void jd_renderer_finish(jd_renderer *r) { (void)r; glFinish(); }
+void jd_renderer_set_timing(jd_renderer *r, int on) { r->d.timing = on; }
+int jd_renderer_highp(const jd_renderer *r) { return r->highp; }
+const jd_mesh *jd_renderer_proxy(const jd_renderer *r) { return &r->proxy; }
+
+/* ---- per frame ---------------------------------------------------------- */
+
+/* Everything a frame derives from the scene on the CPU, once. */
+typedef struct frame_params {
+    jd_mat4 mvp, light_mvp;
+    jd_vec3 eye, light_dir;
+    float light_color[3], albedo[3];
+    float a0_scale[3], f0;
+    float shading[4];
+    float range_mm;
+    jd_dipole dipole;
+    float w0[3], w1[3], w2[3];
+    float inv_eta, inset;
+    float mm_per_world, blur_sigma_px;
+    jd_sh9 sh;
+} frame_params;
+
+static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f)
+{
+    const jd_mesh *m = r->d.mesh;
+    float radius = 0.5f * jd_v3_len(jd_v3_sub(m->bmax, m->bmin));
+    if (!(radius > 0)) radius = 1.0f;
+    float mm_per_unit = s->mm_per_unit > 0 ? s->mm_per_unit : 100.0f / (2.0f * radius);
+    f->mm_per_world = mm_per_unit * radius;
+
+    float aspect = (float)r->d.width / (float)r->d.height;
+    float dist = s->cam_distance > 0 ? s->cam_distance : 2.7f;
+    float fov = s->fov_deg > 1 ? s->fov_deg : 35.0f;
+    f->eye = jd_v3_scale(jd_v3_from_angles(s->cam_azimuth, s->cam_elevation), dist);
+    jd_mat4 view = jd_m4_look_at(f->eye, jd_v3(0, 0, 0), jd_v3(0, 1, 0));
+    jd_mat4 proj = jd_m4_perspective(fov, aspect, fmaxf(dist - 1.2f, 0.05f), dist + 1.2f);
+    f->mvp = jd_m4_mul(proj, view);
+
+    f->light_dir = jd_v3_from_angles(s->light_azimuth, s->light_elevation);
+    jd_mat4 lview = jd_m4_look_at(jd_v3_scale(f->light_dir, 2.0f), jd_v3(0, 0, 0), jd_v3(0, 1, 0));
+    f->light_mvp = jd_m4_mul(jd_m4_ortho(-1, 1, -1, 1, 1, 3), lview);
+
+    jd_dipole_init(&f->dipole, s->sigma_s, s->sigma_a, s->eta, s->density > 0 ? s->density : 1.0f);
+    const jd_dipole *dp_ = &f->dipole;
+#define dp (*dp_)
+    double mean_ss = 0;
+    for (int c = 0; c < 3; c++) {
+        f->light_color[c] = s->light_intensity;
+        f->albedo[c] = (float)dp.rd_total[c];
+        f->a0_scale[c] = (float)(s->gain * (1.0 - dp.fdr) / M_PI * 0.5 * dp.alpha[c]);
+        /* The paper's blend, per channel, with sigma_s' (density-scaled). */
+        double sig = s->sigma_s[c] * (double)(s->density > 0 ? s->density : 1.0f);
+        f->w0[c] = (float)(1.0 / (1.0 + 3.0 * sig));
+        f->w1[c] = (float)(2.0 * sig / (1.0 + 3.0 * sig));
+        f->w2[c] = (float)(sig / (1.0 + 3.0 * sig));
+        mean_ss += sig / 3.0;
+    }
+#undef dp
+    f->range_mm = 2.0f * f->mm_per_world;
+    float f0 = (s->eta - 1.0f) / (s->eta + 1.0f);
+    f->f0 = f0 * f0;
+    f->shading[0] = s->ambient;
+    f->shading[1] = s->specular;
+    f->shading[2] = s->shininess > 1 ? s->shininess : 1;
+    f->shading[3] = s->exposure > 0 ? s->exposure : 1;
+    f->inv_eta = 1.0f / (s->eta > 0.5f ? s->eta : 1.3f);
+    f->inset = 2.0f / (float)r->d.proxy_cells;
+
+    /* The paper's spread width, sigma = 2 sigma_s, read as millimetres and
+     * turned into pixels of the low-resolution buffer at the object's depth. */
+    double world_per_px = 2.0 * dist * tan(fov * M_PI / 360.0) / r->d.height * r->d.spread_divisor;
+    f->blur_sigma_px = (float)(2.0 * mean_ss / (world_per_px * f->mm_per_world));
+    if (f->blur_sigma_px < 0.25f) f->blur_sigma_px = 0.25f;
+    if (f->blur_sigma_px > 24.0f) f->blur_sigma_px = 24.0f;
+}
+
+/* M(t) over t in [0, range]: the bracket of the dipole tail (without
+ * alpha'/2, which is in the A0 scale), halved into [0,1] and stored as its
+ * square root so thin-light values keep precision in 8 bits. Rebuilt only
+ * when the material or the scale changes. */
+static void update_tail(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    float key[9] = {s->sigma_s[0], s->sigma_s[1], s->sigma_s[2], s->sigma_a[0], s->sigma_a[1],
+                    s->sigma_a[2], s->eta, s->density, f->range_mm};
+    if (!memcmp(key, r->tail_key, sizeof key)) return;
+    memcpy(r->tail_key, key, sizeof key);
+    const jd_dipole *d = &f->dipole;
+    for (int i = 0; i < TAIL_SIZE; i++) {
+        double t = (double)i / (TAIL_SIZE - 1) * f->range_mm;
+        for (int c = 0; c < 3; c++) {
+            double m = d->alpha[c] > 0 ? jd_dipole_tail(d, c, t) / (0.5 * d->alpha[c]) : 0.0;
+            double v = sqrt(fmin(fmax(m * 0.5, 0.0), 1.0));
+            r->tail_px[4 * i + c] = (uint8_t)(v * 255.0 + 0.5);
+        }
+        r->tail_px[4 * i + 3] = 255;
+    }
+    glBindTexture(GL_TEXTURE_2D, r->tail_tex);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, TAIL_SIZE, 1, GL_RGBA, GL_UNSIGNED_BYTE, r->tail_px);
+}
+
+static void bind_mesh(GLuint vbo, GLuint ibo)
+{
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
+    glEnableVertexAttribArray(0);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 24, (const void *)0);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 24, (const void *)12);
+}
+
+static void bind_quad(const jd_renderer *r)
+{
+    glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
+    glDisableVertexAttribArray(1);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 8, (const void *)0);
+}
+
+static void use_target(const target *t)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glViewport(0, 0, t->w, t->h);
+}
+
+static void pass_light_depth(jd_renderer *r, const frame_params *f)
+{
+    use_target(&r->light);
+    glClearColor(1, 0, 0, 1); /* packed 1.0: nothing in front */
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    /* Only surfaces facing the light can be the nearest to it. */
+    if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
+    glUseProgram(r->depth_prog);
+    glUniformMatrix4fv(r->depth_mvp, 1, GL_FALSE, f->light_mvp.m);
+    bind_mesh(r->proxy_vbo, r->proxy_ibo);
+    glDrawElements(GL_TRIANGLES, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0);
+}
+
+static void pass_capture(jd_renderer *r, const frame_params *f)
+{
+    int n = r->d.cube_size;
+    float h = r->box_half;
+    glBindFramebuffer(GL_FRAMEBUFFER, r->atlas.fbo);
+    glViewport(0, 0, r->atlas.w, r->atlas.h);
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
+    glUseProgram(r->capture_prog);
+    glUniformMatrix4fv(r->cap_light_mvp, 1, GL_FALSE, f->light_mvp.m);
+    glUniform3f(r->cap_light_dir, f->light_dir.x, f->light_dir.y, f->light_dir.z);
+    glUniform3fv(r->cap_light_color, 1, f->light_color);
+    glUniform1f(r->cap_bias, 1.5f / (float)r->d.proxy_cells);
+    glUniform1i(r->cap_depth, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, r->light.tex);
+    bind_mesh(r->cap_vbo, r->cap_ibo);
+    jd_mat4 ortho = jd_m4_ortho(-h, h, -h, h, 3.0f - h - 0.01f, 3.0f + h + 0.01f);
+    for (int face = 0; face < 6; face++) {
+        float a[3], u[3], v[3];
+        jd_cube_face_frame(face, a, u, v);
+        jd_mat4 view = jd_m4_look_at(jd_v3(3 * a[0], 3 * a[1], 3 * a[2]), jd_v3(0, 0, 0), jd_v3(v[0], v[1], v[2]));
+        jd_mat4 mvp = jd_m4_mul(ortho, view);
+        glViewport((face % 3) * n, (face / 3) * n, n, n);
+        glUniformMatrix4fv(r->cap_mvp, 1, GL_FALSE, mvp.m);
+        glDrawElements(GL_TRIANGLES, (GLsizei)r->capture_proxy.num_indices, GL_UNSIGNED_SHORT, 0);
+    }
+}
+
+static void draw_quad_into(const jd_renderer *r, const target *t)
+{
+    use_target(t);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    (void)r;
+}
+
+static jd_result pass_sh(jd_renderer *r, frame_params *f, jd_error *err)
+{
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    bind_quad(r);
+    glActiveTexture(GL_TEXTURE0);
+    glUseProgram(r->project_prog);
+    glUniform1i(r->proj_atlas, 0);
+    glBindTexture(GL_TEXTURE_2D, r->atlas.tex);
+    draw_quad_into(r, &r->sh1);
+    glUseProgram(r->reduce_faces_prog);
+    glUniform1i(r->rf_src, 0);
+    glUniform2f(r->rf_texel, 1.0f / r->sh1.w, 1.0f / r->sh1.h);
+    glBindTexture(GL_TEXTURE_2D, r->sh1.tex);
+    draw_quad_into(r, &r->sh2);
+    glUseProgram(r->reduce_final_prog);
+    glUniform1i(r->rl_src, 0);
+    glUniform2f(r->rl_texel, 1.0f / r->sh2.w, 1.0f / r->sh2.h);
+    glBindTexture(GL_TEXTURE_2D, r->sh2.tex);
+    draw_quad_into(r, &r->sh3);
+    /* 27 pixels come back as uniforms for the per-vertex SH evaluation. */
+    uint8_t px[27 * 4];
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, 1, 27, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    if (glGetError() != GL_NO_ERROR) return jd_fail(err, JD_ERR_GL, "reading back the SH coefficients failed");
+    jd_sh_decode(px, r->highp, &f->sh);
+    return JD_OK;
+}
+
+static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const frame_params *f, int w, int h)
+{
+    glUseProgram(p->id);
+    glUniformMatrix4fv(p->mvp, 1, GL_FALSE, f->mvp.m);
+    glUniform3f(p->eye, f->eye.x, f->eye.y, f->eye.z);
+    glUniform3f(p->light_dir, f->light_dir.x, f->light_dir.y, f->light_dir.z);
+    glUniform3fv(p->albedo, 1, f->albedo);
+    glUniform3fv(p->light_color, 1, f->light_color);
+    glUniform4fv(p->shading, 1, f->shading);
+    if (p->sh >= 0) {
+        float hb = r->box_half;
+        glUniformMatrix4fv(p->light_mvp, 1, GL_FALSE, f->light_mvp.m);
+        glUniform3fv(p->sh, 9, &f->sh.c[0][0]);
+        glUniform3f(p->box_min, -hb, -hb, -hb);
+        glUniform3f(p->box_max, hb, hb, hb);
+        glUniform1f(p->inv_eta, f->inv_eta);
+        glUniform1f(p->inset, f->inset);
+        glUniform3fv(p->a0_scale, 1, f->a0_scale);
+        glUniform1f(p->f0, f->f0);
+        glUniform1i(p->depth, 0);
+        glUniform1i(p->tail, 3);
+        glActiveTexture(GL_TEXTURE3);
+        glBindTexture(GL_TEXTURE_2D, r->tail_tex);
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, r->light.tex);
+    }
+    if (p->a1 >= 0) {
+        glUniform1i(p->a1, 1);
+        glUniform1i(p->a2, 2);
+        glUniform2f(p->inv_viewport, 1.0f / (float)w, 1.0f / (float)h);
+        glUniform3fv(p->w0, 1, f->w0);
+        glUniform3fv(p->w1, 1, f->w1);
+        glUniform3fv(p->w2, 1, f->w2);
+        glActiveTexture(GL_TEXTURE1);
+        glBindTexture(GL_TEXTURE_2D, r->spread1.tex);
+        glActiveTexture(GL_TEXTURE2);
+        glBindTexture(GL_TEXTURE_2D, r->spread2.tex);
+        glActiveTexture(GL_TEXTURE0);
+    }
+}
+
+static void blur(jd_renderer *r, const target *src, const target *dst, float dx, float dy, float step, float inv2s2)
+{
+    glBindTexture(GL_TEXTURE_2D, src->tex);
+    glUniform2f(r->blur_step, dx * step / (float)src->w, dy * step / (float)src->h);
+    glUniform1f(r->blur_inv, inv2s2);
+    draw_quad_into(r, dst);
+}
+
+static void pass_spread(jd_renderer *r, const frame_params *f)
+{
+    /* A0 at low resolution from the proxy: these layers are blurred, so the
+     * full mesh would buy nothing. */
+    use_target(&r->spread0);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
+    set_shade_uniforms(r, &r->a0, f, r->spread0.w, r->spread0.h);
+    bind_mesh(r->proxy_vbo, r->proxy_ibo);
+    glDrawElements(GL_TRIANGLES, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0);
+
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    bind_quad(r);
+    glUseProgram(r->blur_prog);
+    glUniform1i(r->blur_src, 0);
+    glActiveTexture(GL_TEXTURE0);
+    float sigma = f->blur_sigma_px;
+    float step = sigma * 3.0f / BLUR_TAPS;
+    if (step < 1.0f) step = 1.0f;
+    float st = sigma / step;
+    float inv2s2 = 1.0f / (2.0f * st * st);
+    blur(r, &r->spread0, &r->spread_tmp, 1, 0, step, inv2s2);
+    blur(r, &r->spread_tmp, &r->spread1, 0, 1, step, inv2s2);
+    blur(r, &r->spread1, &r->spread_tmp, 1, 0, step, inv2s2);
+    blur(r, &r->spread_tmp, &r->spread2, 0, 1, step, inv2s2);
+}
+
+static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
+    glViewport(0, 0, r->d.width, r->d.height);
+    float bg[3];
+    for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f)); /* display gamma 2, as the shader */
+    glClearColor(bg[0], bg[1], bg[2], 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
+    set_shade_uniforms(r, &r->shade[s->mode], f, r->d.width, r->d.height);
+    bind_mesh(r->mesh_vbo, r->mesh_ibo);
+    glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
+}
+
+static void lap(const jd_renderer *r, jd_frame_stats *st, int pass, double *t)
+{
+    if (!r->d.timing || !st) return;
+    glFinish();
+    double now = now_ms();
+    st->pass_ms[pass] += now - *t;
+    *t = now;
+}
+
+jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *stats, jd_error *err)
+{
+    if (s->mode < 0 || s->mode >= JD_MODE_COUNT) return jd_fail(err, JD_ERR_ARG, "unknown mode %d", (int)s->mode);
+    frame_params f;
+    memset(&f, 0, sizeof f);
+    frame_setup(r, s, &f);
+    if (stats) memset(stats, 0, sizeof *stats);
+    double t = now_ms();
+    /* Packed values must reach RGBA8 bit-exact: GL enables dithering by default. */
+    glDisable(GL_DITHER);
+    if (s->mode != JD_MODE_NONE) {
+        update_tail(r, s, &f);
+        pass_light_depth(r, &f);
+        lap(r, stats, JD_PASS_LIGHT_DEPTH, &t);
+        pass_capture(r, &f);
+        lap(r, stats, JD_PASS_CAPTURE, &t);
+        jd_result res = pass_sh(r, &f, err);
+        if (res) return res;
+        lap(r, stats, JD_PASS_SH, &t);
+        if (s->mode == JD_MODE_DUAL) {
+            pass_spread(r, &f);
+            lap(r, stats, JD_PASS_SPREAD, &t);
+        }
+    }
+    pass_main(r, s, &f);
+    lap(r, stats, JD_PASS_MAIN, &t);
+    if (stats) {
+        memcpy(stats->sh, f.sh.c, sizeof stats->sh);
+        stats->blur_sigma_px = f.blur_sigma_px;
+    }
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return jd_fail(err, JD_ERR_GL, "GL error 0x%x during the %s frame", e, jd_mode_name(s->mode));
+    return JD_OK;
+}
+
+jd_result jd_renderer_read_capture(jd_renderer *r, uint8_t *atlas, uint8_t *sh27, int *n, jd_error *err)
+{
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    if (atlas) {
+        glBindFramebuffer(GL_FRAMEBUFFER, r->atlas.fbo);
+        glReadPixels(0, 0, r->atlas.w, r->atlas.h, GL_RGBA, GL_UNSIGNED_BYTE, atlas);
+    }
+    if (sh27) {
+        glBindFramebuffer(GL_FRAMEBUFFER, r->sh3.fbo);
+        glReadPixels(0, 0, 1, 27, GL_RGBA, GL_UNSIGNED_BYTE, sh27);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
+    if (n) *n = r->d.cube_size;
+    return glGetError() == GL_NO_ERROR ? JD_OK : jd_fail(err, JD_ERR_GL, "reading the capture back failed");
+}

@@ -1,0 +1,80 @@
+/* The translucency renderer: every GL resource is made at creation; a frame
+ * allocates nothing. */
+#ifndef JD_RENDERER_H
+#define JD_RENDERER_H
+
+#include "arena.h"
+#include "gl_caps.h"
+#include "material.h"
+#include "mesh.h"
+
+typedef enum jd_mode { JD_MODE_NONE = 0, JD_MODE_SINGLE, JD_MODE_DUAL, JD_MODE_COUNT } jd_mode;
+typedef enum jd_precision { JD_PRECISION_AUTO = 0, JD_PRECISION_HIGHP, JD_PRECISION_MEDIUMP } jd_precision;
+
+const char *jd_mode_name(jd_mode m);
+int jd_mode_parse(const char *s, jd_mode *out);
+
+/* Zero fields take the defaults in brackets. */
+typedef struct jd_renderer_desc {
+    const jd_mesh *mesh;
+    const jd_gl_caps *caps;
+    unsigned target_fbo;  /* where frames go (the platform's) */
+    int width, height;
+    int cube_size;        /* [64] texels per capture face, a multiple of 8 */
+    int light_map_size;   /* [256] */
+    int proxy_cells;      /* [40] vertex-clustering grid of the proxy mesh */
+    int capture_cells;    /* [24] coarser proxy for the cube capture */
+    int spread_divisor;   /* [4] spread layers at 1/N resolution */
+    jd_precision precision; /* [from the device's fragment highp support] */
+    int no_cull;          /* draw back faces too (open meshes) */
+    int timing;           /* glFinish after each pass to time it */
+} jd_renderer_desc;
+
+/* What a frame shows. jd_scene_defaults fills a sensible one. */
+typedef struct jd_scene {
+    jd_mode mode;
+    float cam_azimuth, cam_elevation; /* degrees */
+    float cam_distance;   /* in bounding radii */
+    float fov_deg;
+    float light_azimuth, light_elevation;
+    float light_intensity;
+    float ambient, specular, shininess, exposure;
+    float sigma_s[3], sigma_a[3]; /* mm^-1 */
+    float eta, density;
+    float mm_per_unit;    /* 0: the object is 100 mm across */
+    float gain;           /* artistic K of the translucent layer */
+    float background[3];
+} jd_scene;
+
+void jd_scene_defaults(jd_scene *s, const jd_material *m);
+
+enum { JD_PASS_LIGHT_DEPTH, JD_PASS_CAPTURE, JD_PASS_SH, JD_PASS_SPREAD, JD_PASS_MAIN, JD_PASS_COUNT };
+const char *jd_pass_name(int pass);
+
+typedef struct jd_frame_stats {
+    double pass_ms[JD_PASS_COUNT]; /* CPU wall time per pass (with desc.timing) */
+    float sh[9][3];                /* coefficients used this frame */
+    float blur_sigma_px;           /* spread width in low-res pixels */
+} jd_frame_stats;
+
+typedef struct jd_renderer jd_renderer;
+
+jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer **out,
+                             jd_error *err);
+jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *stats,
+                            jd_error *err);
+void jd_renderer_destroy(jd_renderer *r);
+/* Waits for the GPU: frame timing and readback boundaries. */
+void jd_renderer_finish(jd_renderer *r);
+/* glFinish after each pass, recording CPU times in jd_frame_stats. */
+void jd_renderer_set_timing(jd_renderer *r, int on);
+
+size_t jd_renderer_target_bytes(const jd_renderer *r);
+int jd_renderer_highp(const jd_renderer *r);
+const jd_mesh *jd_renderer_proxy(const jd_renderer *r);
+/* Reads back the last frame's capture atlas (3N x 2N RGBA8, rows bottom-up)
+ * and the 27 packed SH pixels, for tests against the CPU reference. */
+jd_result jd_renderer_read_capture(jd_renderer *r, uint8_t *atlas, uint8_t *sh27, int *n,
+                                   jd_error *err);
+
+#endif

@@ -1,0 +1,190 @@
+/* Headless GLES 2.0 through EGL: Mesa's surfaceless platform first, then the
+ * EGL device platform (NVIDIA), then the default display with a pbuffer.
+ * Frames go to an offscreen framebuffer object of the requested size. */
+#include "platform.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GLES2/gl2.h>
+
+#ifndef EGL_PLATFORM_SURFACELESS_MESA
+#define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
+#endif
+
+struct jd_platform {
+    EGLDisplay dpy;
+    EGLContext ctx;
+    EGLSurface surf;
+    GLuint fbo, color, depth;
+    int w, h;
+    char describe[160];
+};
+
+static struct jd_platform g_headless; /* one context per process is all jade needs */
+static int g_open;
+
+static int has_ext(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *p = list; p && (p = strstr(p, name)); p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == 0)) return 1;
+    return 0;
+}
+
+/* Tries one display: initialise, pick an ES2 config, create a context and make
+ * it current, surfaceless if the display allows, else on a 1x1 pbuffer. */
+static int try_display(struct jd_platform *p, EGLDisplay dpy, const char *how)
+{
+    if (dpy == EGL_NO_DISPLAY) return 0;
+    EGLint major, minor;
+    if (!eglInitialize(dpy, &major, &minor)) return 0;
+    const char *exts = eglQueryString(dpy, EGL_EXTENSIONS);
+    int surfaceless = has_ext(exts, "EGL_KHR_surfaceless_context");
+    const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES2_BIT,
+                               EGL_SURFACE_TYPE, surfaceless ? 0 : EGL_PBUFFER_BIT,
+                               EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE};
+    EGLConfig cfg;
+    EGLint n = 0;
+    if (!eglBindAPI(EGL_OPENGL_ES_API) || !eglChooseConfig(dpy, cfg_attr, &cfg, 1, &n) || n < 1) {
+        eglTerminate(dpy);
+        return 0;
+    }
+    const EGLint ctx_attr[] = {EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE};
+    EGLContext ctx = eglCreateContext(dpy, cfg, EGL_NO_CONTEXT, ctx_attr);
+    if (ctx == EGL_NO_CONTEXT) { eglTerminate(dpy); return 0; }
+    EGLSurface surf = EGL_NO_SURFACE;
+    if (!surfaceless) {
+        const EGLint pb[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
+        surf = eglCreatePbufferSurface(dpy, cfg, pb);
+        if (surf == EGL_NO_SURFACE) { eglDestroyContext(dpy, ctx); eglTerminate(dpy); return 0; }
+    }
+    if (!eglMakeCurrent(dpy, surf, surf, ctx)) {
+        if (surf != EGL_NO_SURFACE) eglDestroySurface(dpy, surf);
+        eglDestroyContext(dpy, ctx);
+        eglTerminate(dpy);
+        return 0;
+    }
+    p->dpy = dpy;
+    p->ctx = ctx;
+    p->surf = surf;
+    snprintf(p->describe, sizeof p->describe, "EGL %d.%d %s%s (%s)", major, minor, how,
+             surfaceless ? "" : " + pbuffer", eglQueryString(dpy, EGL_VENDOR));
+    return 1;
+}
+
+static int open_any_display(struct jd_platform *p)
+{
+    const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    if (get_platform_display && has_ext(client, "EGL_MESA_platform_surfaceless") &&
+        try_display(p, get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL),
+                    "surfaceless"))
+        return 1;
+    PFNEGLQUERYDEVICESEXTPROC query_devices =
+        (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+    if (get_platform_display && query_devices && has_ext(client, "EGL_EXT_platform_device")) {
+        EGLDeviceEXT devs[8];
+        EGLint n = 0;
+        if (query_devices(8, devs, &n))
+            for (EGLint i = 0; i < n; i++)
+                if (try_display(p, get_platform_display(EGL_PLATFORM_DEVICE_EXT, devs[i], NULL),
+                                "device"))
+                    return 1;
+    }
+    return try_display(p, eglGetDisplay(EGL_DEFAULT_DISPLAY), "default display");
+}
+
+jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_error *err)
+{
+    if (desc->kind && strcmp(desc->kind, "headless") != 0)
+        return jd_fail(err, JD_ERR_ARG, "platform '%s' is not built into this program (have: headless)", desc->kind);
+    if (g_open) return jd_fail(err, JD_ERR_PLATFORM, "headless platform is already open");
+    struct jd_platform *p = &g_headless;
+    memset(p, 0, sizeof *p);
+    p->w = desc->width > 0 ? desc->width : 512;
+    p->h = desc->height > 0 ? desc->height : 512;
+    if (!open_any_display(p))
+        return jd_fail(err, JD_ERR_PLATFORM,
+                       "no EGL display gives a GLES 2.0 context (tried surfaceless, device, default; "
+                       "is libegl-mesa0 installed?)");
+    GLint max_rb = 0;
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
+    if (p->w > max_rb || p->h > max_rb) {
+        jd_platform_close(p);
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "size %dx%d exceeds this GPU's limit of %d", desc->width,
+                       desc->height, max_rb);
+    }
+    /* An RGBA8 texture as colour target: core ES 2.0 has no RGBA8 renderbuffer. */
+    glGenTextures(1, &p->color);
+    glBindTexture(GL_TEXTURE_2D, p->color);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, p->w, p->h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glGenRenderbuffers(1, &p->depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, p->depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, p->w, p->h);
+    glGenFramebuffers(1, &p->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, p->fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, p->color, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, p->depth);
+    GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        jd_platform_close(p);
+        return jd_fail(err, JD_ERR_PLATFORM, "offscreen framebuffer %dx%d incomplete (0x%x)", p->w, p->h, st);
+    }
+    g_open = 1;
+    *out = p;
+    return JD_OK;
+}
+
+void jd_platform_size(const jd_platform *p, int *w, int *h) { *w = p->w; *h = p->h; }
+unsigned jd_platform_framebuffer(const jd_platform *p) { return p->fbo; }
+const char *jd_platform_describe(const jd_platform *p) { return p->describe; }
+void *jd_platform_proc(const jd_platform *p, const char *name)
+{
+    (void)p;
+    return (void *)eglGetProcAddress(name);
+}
+
+jd_result jd_platform_present(jd_platform *p, jd_error *err)
+{
+    (void)p;
+    (void)err;
+    glFlush(); /* nothing to show; the frame stays in the FBO for readback */
+    return JD_OK;
+}
+
+jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, p->fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, p->w, p->h, GL_RGBA, GL_UNSIGNED_BYTE, dst);
+    if (glGetError() != GL_NO_ERROR) return jd_fail(err, JD_ERR_GL, "glReadPixels failed");
+    /* GL rows run bottom-up; images run top-down. Swap in place, no scratch. */
+    size_t row = (size_t)p->w * 4;
+    for (int y = 0; y < p->h / 2; y++) {
+        uint8_t *a = dst + row * (size_t)y, *b = dst + row * (size_t)(p->h - 1 - y);
+        for (size_t i = 0; i < row; i++) { uint8_t t = a[i]; a[i] = b[i]; b[i] = t; }
+    }
+    return JD_OK;
+}
+
+void jd_platform_close(jd_platform *p)
+{
+    if (!p || p->dpy == EGL_NO_DISPLAY || !p->dpy) return;
+    if (p->fbo) glDeleteFramebuffers(1, &p->fbo);
+    if (p->color) glDeleteTextures(1, &p->color);
+    if (p->depth) glDeleteRenderbuffers(1, &p->depth);
+    eglMakeCurrent(p->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (p->surf != EGL_NO_SURFACE) eglDestroySurface(p->dpy, p->surf);
+    eglDestroyContext(p->dpy, p->ctx);
+    eglTerminate(p->dpy);
+    memset(p, 0, sizeof *p);
+    g_open = 0;
+}

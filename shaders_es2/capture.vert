@@ -1,0 +1,18 @@
+#version 100
+// One face of the bounding-cube capture: the object under direct light only.
+attribute vec3 a_position;
+attribute vec3 a_normal;
+uniform mat4 u_mvp;
+uniform mat4 u_light_mvp;
+uniform vec3 u_light_dir;
+uniform float u_bias;
+varying float v_ndl;
+varying vec3 v_light;
+void main()
+{
+    gl_Position = u_mvp * vec4(a_position, 1.0);
+    v_ndl = max(dot(normalize(a_normal), u_light_dir), 0.0);
+    vec4 lp = u_light_mvp * vec4(a_position, 1.0);
+    v_light = lp.xyz * 0.5 + 0.5;
+    v_light.z -= u_bias;
+}

@@ -1,0 +1,65 @@
+#version 100
+// Shared vertex stage of the shading passes. The SH irradiance along the
+// parallax-corrected refraction direction is evaluated here, per vertex: it is
+// low-frequency, and keeping the nine SH vectors out of the fragment shader
+// fits devices with only 16 fragment uniform vectors.
+attribute vec3 a_position;
+attribute vec3 a_normal;
+uniform mat4 u_mvp;
+uniform mat4 u_light_mvp;
+uniform mediump vec3 u_eye; // shared with the fragment stage: precisions must match
+varying vec3 v_pos;
+varying vec3 v_normal;
+#if JD_TRANSLUCENT
+uniform vec3 u_sh[9];
+uniform vec3 u_box_min;
+uniform vec3 u_box_max;
+uniform float u_inv_eta;
+uniform float u_inset;
+uniform float u_f0;          // Schlick reflectance at normal incidence
+uniform vec3 u_a0_scale;     // K (1-Fdr)/pi alpha'/2, per channel
+varying vec3 v_light;
+varying vec3 v_trans;        // everything of A0 but the thickness term
+
+vec3 sh_irradiance(vec3 n)
+{
+    const float c1 = 0.429043, c2 = 0.511664, c3 = 0.743125, c4 = 0.886227, c5 = 0.247708;
+    return c1 * u_sh[8] * (n.x * n.x - n.y * n.y) + c3 * u_sh[6] * n.z * n.z + c4 * u_sh[0]
+         - c5 * u_sh[6]
+         + 2.0 * c1 * (u_sh[4] * n.x * n.y + u_sh[7] * n.x * n.z + u_sh[5] * n.y * n.z)
+         + 2.0 * c2 * (u_sh[3] * n.x + u_sh[1] * n.y + u_sh[2] * n.z);
+}
+#endif
+
+void main()
+{
+    v_pos = a_position;
+    v_normal = a_normal;
+    gl_Position = u_mvp * vec4(a_position, 1.0);
+#if JD_TRANSLUCENT
+    vec3 n = normalize(a_normal);
+    vec3 view = normalize(u_eye - a_position);
+    if (dot(n, view) < 0.0) n = -n;
+    // Thickness is read at a point moved inward, so the surface does not
+    // measure itself.
+    vec4 lp = u_light_mvp * vec4(a_position - u_inset * n, 1.0);
+    v_light = lp.xyz * 0.5 + 0.5;
+    vec3 r = refract(-view, n, u_inv_eta);
+    if (dot(r, r) < 1e-6) r = -n;
+    // Box projection: where the refracted ray leaves the bounding cube, seen
+    // from the capture centre (the origin).
+    // No zero components: 0/0 would poison the lookup with NaN.
+    r = vec3(r.x < 0.0 ? min(r.x, -1e-4) : max(r.x, 1e-4),
+             r.y < 0.0 ? min(r.y, -1e-4) : max(r.y, 1e-4),
+             r.z < 0.0 ? min(r.z, -1e-4) : max(r.z, 1e-4));
+    vec3 s1 = (u_box_max - a_position) / r;
+    vec3 s2 = (u_box_min - a_position) / r;
+    vec3 sf = max(s1, s2);
+    float s = min(min(sf.x, sf.y), sf.z);
+    vec3 d = normalize(a_position + s * r);
+    float x = clamp(1.0 - dot(n, view), 0.0, 1.0);
+    float x2 = x * x;
+    float ft = 1.0 - (u_f0 + (1.0 - u_f0) * x2 * x2 * x); // Fresnel transmittance
+    v_trans = ft * u_a0_scale * max(sh_irradiance(d), vec3(0.0));
+#endif
+}

@@ -1,0 +1,56 @@
+// Fixed-point packing of one value in [0,1] into RGBA8 bytes. Every factor is
+// 255 or less, so nothing overflows fp16 (largest finite 65504) on
+// mediump-only GPUs. JD_PACK_HIGHP: three bytes (~24 bits); otherwise two
+// bytes, about what fp16 arithmetic can carry anyway (~11-12 bits).
+vec4 jd_pack(float v)
+{
+    v = clamp(v, 0.0, 1.0);
+    float a = v * 255.0;
+    float b0 = floor(a);
+    float r1 = a - b0;
+#if JD_PACK_HIGHP
+    float c = r1 * 255.0;
+    float b1 = floor(c);
+    return vec4(b0 / 255.0, b1 / 255.0, c - b1, 1.0);
+#else
+    return vec4(b0 / 255.0, r1, 0.0, 1.0);
+#endif
+}
+
+// Texture units do not all turn a byte b into exactly b/255 (llvmpipe is off
+// by a few parts in 1e5, which a reduction turns into a bias): recover the
+// bytes first, then combine them.
+float jd_unpack(vec4 p)
+{
+    vec3 b = floor(p.xyz * 255.0 + 0.5);
+#if JD_PACK_HIGHP
+    return (b.x + (b.y + b.z / 255.0) / 255.0) / 255.0;
+#else
+    return (b.x + b.y / 255.0) / 255.0;
+#endif
+}
+
+// Signed values in [-1,1], for the SH reduction. highp: the 3-byte packing of
+// s/2 + 0.5. mediump: an offset of 0.5 would spend fp16's 11 bits on the
+// offset, so the positive and negative parts get two bytes each and small
+// values keep their relative precision.
+vec4 jd_pack_signed(float s)
+{
+#if JD_PACK_HIGHP
+    return jd_pack(s * 0.5 + 0.5);
+#else
+    vec2 pos = jd_pack(max(s, 0.0)).xy;
+    vec2 neg = jd_pack(max(-s, 0.0)).xy;
+    return vec4(pos, neg);
+#endif
+}
+
+float jd_unpack_signed(vec4 p)
+{
+#if JD_PACK_HIGHP
+    return jd_unpack(p) * 2.0 - 1.0;
+#else
+    vec4 b = floor(p * 255.0 + 0.5);
+    return (b.x / 255.0 + b.y / 65025.0) - (b.z / 255.0 + b.w / 65025.0);
+#endif
+}
