@@ -1,0 +1,123 @@
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+
+#include "alloc_count.h"
+#include "commands.h"
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double percentile(double *sorted, int n, double q)
+{
+    double pos = q * (n - 1);
+    int i = (int)pos;
+    double f = pos - i;
+    return i + 1 < n ? sorted[i] * (1 - f) + sorted[i + 1] * f : sorted[n - 1];
+}
+
+/* Runs `frames` frames of one mode with the light orbiting once per 120
+ * frames, so thickness, capture and SH are recomputed every frame. */
+static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times, int first)
+{
+    jd_scene sc = o->scene;
+    sc.mode = mode;
+    jd_error err = {0};
+    double pass[JD_PASS_COUNT] = {0};
+    jd_frame_stats st;
+    /* Warm-up frames build driver-side state (shader variants, caches). */
+    for (int i = 0; i < 5; i++) {
+        sc.light_azimuth = o->scene.light_azimuth + 3.0f * i;
+        if (jd_renderer_frame(s->renderer, &sc, NULL, &err)) goto fail;
+    }
+    jd_renderer_finish(s->renderer);
+    jd_alloc_count_start();
+    for (int i = 0; i < o->frames; i++) {
+        sc.light_azimuth = o->scene.light_azimuth + 360.0f * (float)i / 120.0f;
+        double t0 = jd_now_ms();
+        if (jd_renderer_frame(s->renderer, &sc, NULL, &err)) { jd_alloc_count_stop(); goto fail; }
+        jd_renderer_finish(s->renderer);
+        times[i] = jd_now_ms() - t0;
+    }
+    unsigned long allocs = jd_alloc_count_stop();
+    /* Per-pass times come from a separate run with glFinish after each pass,
+     * which serialises the GPU and so is kept out of the frame times. */
+    int timed = o->frames < 60 ? o->frames : 60;
+    jd_renderer_set_timing(s->renderer, 1);
+    for (int i = 0; i < timed; i++) {
+        sc.light_azimuth = o->scene.light_azimuth + 360.0f * (float)i / 120.0f;
+        if (jd_renderer_frame(s->renderer, &sc, &st, &err)) { jd_renderer_set_timing(s->renderer, 0); goto fail; }
+        for (int p = 0; p < JD_PASS_COUNT; p++) pass[p] += st.pass_ms[p] / timed;
+    }
+    jd_renderer_set_timing(s->renderer, 0);
+    double sorted_sum = 0;
+    for (int i = 0; i < o->frames; i++) sorted_sum += times[i];
+    qsort(times, (size_t)o->frames, sizeof(double), cmp_double);
+    double med = percentile(times, o->frames, 0.5), p95 = percentile(times, o->frames, 0.95);
+    printf("%s    \"%s\": {\"frame_ms_median\": %.3f, \"frame_ms_p95\": %.3f, \"frame_ms_mean\": %.3f, \"fps\": %.1f, "
+           "\"heap_allocations_in_loop\": %lu, \"pass_ms_mean\": {",
+           first ? "" : ",\n", jd_mode_name(mode), med, p95, sorted_sum / o->frames, 1000.0 / med, allocs);
+    for (int p = 0; p < JD_PASS_COUNT; p++)
+        printf("%s\"%s\": %.3f", p ? ", " : "", jd_pass_name(p), pass[p]);
+    printf("}}");
+    return 1;
+fail:
+    fprintf(stderr, "jade bench: %s\n", err.msg);
+    return 0;
+}
+
+int jd_cmd_bench(int argc, char **argv)
+{
+    jd_options o;
+    jd_options_defaults(&o);
+    o.mode_list = "all";
+    int p = jd_options_parse(&o, JD_OPT_BENCH, "bench", argc, argv, 2);
+    if (p < 0) {
+        jd_options_help(JD_OPT_BENCH, "bench",
+                        "Renders N frames per mode with the light orbiting and prints one JSON object.\n"
+                        "Frame times: glFinish at the end of each frame. Pass times: a separate run of\n"
+                        "up to 60 frames with glFinish after each pass.");
+        return 0;
+    }
+    if (!p || !jd_options_finish(&o, "bench")) return 2;
+    if (!o.frames) o.frames = 200;
+
+    jd_session s;
+    if (!jd_session_open(&s, &o, "bench")) { jd_session_close(&s); return 1; }
+    jd_error err = {0};
+    double *times = jd_arena_alloc(&s.arena, sizeof(double) * (size_t)o.frames, 16, "bench timings", &err);
+    if (!times) { fprintf(stderr, "jade bench: %s\n", err.msg); jd_session_close(&s); return 1; }
+    /* Time to first frame: from process start to a finished frame. */
+    jd_scene first = o.scene;
+    first.mode = strcmp(o.mode_list, "all") ? o.scene.mode : JD_MODE_DUAL;
+    if (jd_renderer_frame(s.renderer, &first, NULL, &err)) { fprintf(stderr, "jade bench: %s\n", err.msg); jd_session_close(&s); return 1; }
+    jd_renderer_finish(s.renderer);
+    double ttff = jd_now_ms() - s.t_start_ms;
+
+    printf("{\n  \"mesh\": \"%s\", \"triangles\": %u, \"vertices\": %u, \"proxy_triangles\": %u,\n", s.mesh_path,
+           s.mesh.num_indices / 3, s.mesh.num_vertices, jd_renderer_proxy(s.renderer)->num_indices / 3);
+    printf("  \"size\": \"%dx%d\", \"frames\": %d, \"material\": \"%s\", \"cube_size\": %d, \"precision\": \"%s\",\n",
+           o.width, o.height, o.frames, o.material, o.rdesc.cube_size ? o.rdesc.cube_size : 64,
+           jd_renderer_highp(s.renderer) ? "highp" : "mediump");
+    printf("  \"gl_renderer\": \"%s\", \"platform\": \"%s\",\n", s.caps.renderer, jd_platform_describe(s.platform));
+    printf("  \"time_to_first_frame_ms\": %.1f, \"draco_decode_ms\": %.2f, \"file_bytes\": %zu,\n", ttff,
+           s.load.decode_ms, s.load.file_bytes);
+    printf("  \"arena_budget_bytes\": %zu, \"arena_peak_bytes\": %zu, \"render_target_bytes\": %zu,\n", s.arena.size,
+           s.arena.peak, jd_renderer_target_bytes(s.renderer));
+    printf("  \"modes\": {\n");
+    int ok = 1, n = 0;
+    for (int m = 0; m < JD_MODE_COUNT && ok; m++) {
+        if (strcmp(o.mode_list, "all") && m != (int)o.scene.mode) continue;
+        ok = bench_mode(&s, &o, (jd_mode)m, times, n++ == 0);
+    }
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    printf("\n  },\n  \"peak_rss_bytes\": %ld\n}\n", ru.ru_maxrss * 1024L);
+    jd_session_close(&s);
+    return ok ? 0 : 1;
+}

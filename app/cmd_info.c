@@ -1,0 +1,51 @@
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+#include "gl_caps.h"
+#include "platform.h"
+
+int jd_cmd_info(int argc, char **argv)
+{
+    for (int i = 2; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: jade info\nPrints the GL device's limits and the extensions jade can use.\n");
+            return 0;
+        }
+        fprintf(stderr, "jade info: unknown option '%s' (see jade info --help)\n", argv[i]);
+        return 2;
+    }
+    jd_error err = {0};
+    jd_platform *p = NULL;
+    jd_platform_desc pd = {"headless", 64, 64};
+    if (jd_platform_open(&pd, &p, &err)) {
+        fprintf(stderr, "jade info: %s\n", err.msg);
+        return 1;
+    }
+    jd_gl_caps c;
+    if (jd_gl_caps_query(&c, &err)) {
+        fprintf(stderr, "jade info: %s\n", err.msg);
+        jd_platform_close(p);
+        return 1;
+    }
+    printf("platform           %s\n", jd_platform_describe(p));
+    printf("GL_VENDOR          %s\nGL_RENDERER        %s\nGL_VERSION         %s\nGLSL               %s\n", c.vendor,
+           c.renderer, c.version, c.glsl);
+    printf("max texture size   %d\nmax renderbuffer   %d\nmax cube map       %d\nmax viewport       %dx%d\n",
+           c.max_texture_size, c.max_renderbuffer_size, c.max_cube_map_size, c.max_viewport_w, c.max_viewport_h);
+    printf("vertex attribs     %d\nvertex uniforms    %d vec4\nfragment uniforms  %d vec4\nvaryings           %d vec4\n",
+           c.max_vertex_attribs, c.max_vertex_uniform_vectors, c.max_fragment_uniform_vectors, c.max_varying_vectors);
+    printf("texture units      %d (vertex: %d)\n", c.max_texture_units, c.max_vertex_texture_units);
+    printf("fragment highp     %s (precision %d bits, range 2^%d)\n", c.frag_highp_precision >= 23 ? "yes" : "no",
+           c.frag_highp_precision, c.frag_highp_range);
+    printf("fragment mediump   precision %d bits, range 2^%d\n", c.frag_mediump_precision, c.frag_mediump_range);
+    printf("SH packing         %s\n", c.frag_highp_precision >= 23 ? "highp (3 bytes)" : "mediump (2 bytes)");
+    printf("extensions (%d), those jade can use:\n", c.num_extensions);
+    printf("  OES_element_index_uint      %s (meshes over 65,536 vertices)\n", c.ext_element_index_uint ? "yes" : "no");
+    printf("  EXT_disjoint_timer_query    %s (GPU pass timings in bench)\n", c.ext_disjoint_timer_query ? "yes" : "no");
+    printf("  OES_texture_npot            %s (not needed: jade clamps NPOT)\n", c.ext_texture_npot ? "yes" : "no");
+    printf("  OES_depth_texture           %s (not needed: depth packed in RGBA8)\n", c.ext_depth_texture ? "yes" : "no");
+    printf("  OES_texture_float           %s (not needed: SH packed in RGBA8)\n", c.ext_texture_float ? "yes" : "no");
+    jd_platform_close(p);
+    return 0;
+}

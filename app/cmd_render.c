@@ -1,0 +1,61 @@
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+#include "png_out.h"
+#include "session.h"
+
+int jd_cmd_render(int argc, char **argv)
+{
+    jd_options o;
+    jd_options_defaults(&o);
+    o.out = "jade.png";
+    int p = jd_options_parse(&o, JD_OPT_RENDER, "render", argc, argv, 2);
+    if (p < 0) {
+        jd_options_help(JD_OPT_RENDER, "render",
+                        "Renders a Draco mesh in translucent material, headless, to a PNG.");
+        return 0;
+    }
+    if (!p || !jd_options_finish(&o, "render")) return 2;
+    if (!o.frames) o.frames = 1;
+
+    jd_session s;
+    if (!jd_session_open(&s, &o, "render")) { jd_session_close(&s); return 1; }
+    jd_error err = {0};
+    int rc = 0;
+    uint8_t *px = jd_arena_alloc(&s.arena, (size_t)o.width * o.height * 4, 16, "the output image", &err);
+    if (!px) {
+        fprintf(stderr, "jade render: %s\n", err.msg);
+        jd_session_close(&s);
+        return 1;
+    }
+    if (o.sheet) {
+        rc = jd_render_sheet(&s, &o, px);
+        jd_session_close(&s);
+        return rc;
+    }
+    double first_ms = 0, frame_ms = 0;
+    for (int i = 0; i < o.frames; i++) {
+        double t0 = jd_now_ms();
+        if (jd_renderer_frame(s.renderer, &o.scene, NULL, &err) ||
+            jd_platform_read_rgba(s.platform, px, &err)) {
+            fprintf(stderr, "jade render: %s\n", err.msg);
+            jd_session_close(&s);
+            return 1;
+        }
+        frame_ms = jd_now_ms() - t0; /* includes the readback: the frame is done */
+        if (i == 0) first_ms = jd_now_ms() - s.t_start_ms;
+    }
+    if (jd_png_write(o.out, o.width, o.height, px, &err)) {
+        fprintf(stderr, "jade render: %s\n", err.msg);
+        rc = 1;
+    } else {
+        printf("wrote %s (%dx%d, %s, %s, mesh %s: %u triangles)\n", o.out, o.width, o.height,
+               jd_mode_name(o.scene.mode), o.material, s.mesh_path, s.mesh.num_indices / 3);
+        printf("frame %.1f ms, first frame %.0f ms after start, decode %.1f ms, arena peak %zu bytes, "
+               "render targets %zu bytes\n",
+               frame_ms, first_ms, s.load.decode_ms, s.arena.peak, jd_renderer_target_bytes(s.renderer));
+    }
+    jd_session_close(&s);
+    return rc;
+}

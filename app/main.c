@@ -1,0 +1,36 @@
+/* jade: real-time translucency for GLES 2.0 displays. */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+
+#ifndef JD_VERSION
+#define JD_VERSION "0.1.0"
+#endif
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: jade <command> [options]\n\n"
+            "commands:\n"
+            "  render   render a Draco mesh in translucent material to a PNG\n"
+            "  bench    time none/single/dual with an orbiting light, print JSON\n"
+            "  info     print the GL device's limits and usable extensions\n\n"
+            "'jade <command> --help' lists a command's options.\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "jade: no command given (see jade --help)\n");
+        return 2;
+    }
+    const char *c = argv[1];
+    if (!strcmp(c, "--help") || !strcmp(c, "-h") || !strcmp(c, "help")) { usage(stdout); return 0; }
+    if (!strcmp(c, "--version")) { printf("jade %s\n", JD_VERSION); return 0; }
+    if (!strcmp(c, "render")) return jd_cmd_render(argc, argv);
+    if (!strcmp(c, "info")) return jd_cmd_info(argc, argv);
+    if (!strcmp(c, "bench")) return jd_cmd_bench(argc, argv);
+    fprintf(stderr, "jade: unknown command '%s' (see jade --help)\n", c);
+    return 2;
+}

@@ -1,0 +1,199 @@
+#include "options.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef enum { T_STR, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION } opt_type;
+
+typedef struct opt {
+    const char *name;
+    opt_type type;
+    size_t offset;
+    double lo, hi;
+    int commands;
+    const char *help;
+} opt;
+
+#define OFF(f) offsetof(jd_options, f)
+#define R JD_OPT_RENDER
+#define B JD_OPT_BENCH
+static const opt table[] = {
+    {"--mesh", T_STR, OFF(mesh), 0, 0, R | B, "FILE.drc   Draco mesh [the default asset]"},
+    {"--out", T_STR, OFF(out), 0, 0, R, "FILE.png   output image [jade.png]"},
+    {"--sheet", T_STR, OFF(sheet), 0, 0, R, "FILE.png   none | single | dual side by side, labelled"},
+    {"--size", T_SIZE, 0, 16, 4096, R | B, "WxH        image size [512x512]"},
+    {"--frames", T_INT, OFF(frames), 1, 1000000, R | B, "N          frames to render [render 1, bench 200]"},
+    {"--mode", T_MODE, OFF(mode_list), 0, 0, R | B, "M          none|single|dual [dual]; bench also: all"},
+    {"--material", T_STR, OFF(material), 0, 0, R | B, "NAME       measured material [marble]"},
+    {"--sigma-s", T_FLOAT3, OFF(scene.sigma_s), 0, 1000, R | B, "R,G,B      reduced scattering, mm^-1"},
+    {"--sigma-a", T_FLOAT3, OFF(scene.sigma_a), 0, 1000, R | B, "R,G,B      absorption, mm^-1"},
+    {"--eta", T_FLOAT, OFF(scene.eta), 1.0, 3.0, R | B, "X          refractive index"},
+    {"--density", T_FLOAT, OFF(scene.density), 0.001, 1000, R | B, "X          scales both coefficients [1]"},
+    {"--mm-per-unit", T_FLOAT, OFF(scene.mm_per_unit), 1e-6, 1e9, R | B, "X          scene scale [object 100 mm across]"},
+    {"--gain", T_FLOAT, OFF(scene.gain), 0, 100, R | B, "K          gain of the translucent layer [1]"},
+    {"--cam-azimuth", T_FLOAT, OFF(scene.cam_azimuth), -3600, 3600, R | B, "DEG        camera around +Y [15]"},
+    {"--cam-elevation", T_FLOAT, OFF(scene.cam_elevation), -89, 89, R | B, "DEG        camera elevation [35]"},
+    {"--cam-distance", T_FLOAT, OFF(scene.cam_distance), 1.3, 100, R | B, "X          in bounding radii [2.7]"},
+    {"--fov", T_FLOAT, OFF(scene.fov_deg), 5, 150, R | B, "DEG        vertical field of view [35]"},
+    {"--light-azimuth", T_FLOAT, OFF(scene.light_azimuth), -3600, 3600, R | B, "DEG        light around +Y [170: behind]"},
+    {"--light-elevation", T_FLOAT, OFF(scene.light_elevation), -89, 89, R | B, "DEG        light elevation [35]"},
+    {"--light-intensity", T_FLOAT, OFF(scene.light_intensity), 0, 100, R | B, "X          [1]"},
+    {"--exposure", T_FLOAT, OFF(scene.exposure), 0.01, 100, R | B, "X          [1]"},
+    {"--cube-size", T_INT, OFF(rdesc.cube_size), 8, 256, R | B, "N          capture face size, multiple of 8 [64]"},
+    {"--light-map", T_INT, OFF(rdesc.light_map_size), 16, 2048, R | B, "N          light depth map size [256]"},
+    {"--proxy-cells", T_INT, OFF(rdesc.proxy_cells), 4, 64, R | B, "N          proxy mesh grid [40]"},
+    {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
+    {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
+    {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, R | B, "N          memory budget of the core [8]"},
+    {"--decode-timeout-ms", T_INT, OFF(load.timeout_ms), 1, 600000, R | B, "N          refuse a mesh whose decode takes longer [1500]"},
+    {"--max-faces", T_INT, OFF(load.max_faces), 1, 100000000, R | B, "N          refuse meshes with more faces [4000000]"},
+};
+#undef R
+#undef B
+
+void jd_options_defaults(jd_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->width = o->height = 512;
+    o->budget_mb = 8;
+    o->material = "marble";
+    jd_scene_defaults(&o->scene, jd_material_find("marble"));
+    o->scene.eta = 0; /* 0 until --eta or the material sets it */
+}
+
+void jd_options_help(int command, const char *cmdname, const char *summary)
+{
+    printf("usage: jade %s [options]\n%s\n\noptions:\n", cmdname, summary);
+    for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
+        if (table[i].commands & command) printf("  %-20s %s\n", table[i].name, table[i].help);
+    printf("  %-20s %s\n", "--help", "           this text");
+    if (command & (JD_OPT_RENDER | JD_OPT_BENCH)) {
+        printf("\nmaterials:");
+        for (int m = 0; m < jd_material_count; m++) printf(" %s", jd_materials[m].name);
+        printf("\n");
+    }
+}
+
+static int parse_double(const char *s, double lo, double hi, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || end == s || *end || !isfinite(v) || v < lo || v > hi) return 0;
+    *out = v;
+    return 1;
+}
+
+int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char **argv, int first)
+{
+    for (int i = first; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) return -1;
+        const opt *op = NULL;
+        for (size_t k = 0; k < sizeof table / sizeof table[0]; k++)
+            if ((table[k].commands & command) && !strcmp(a, table[k].name)) op = &table[k];
+        if (!op) {
+            fprintf(stderr, "jade %s: unknown option '%s' (see jade %s --help)\n", cmd, a, cmd);
+            return 0;
+        }
+        char *field = (char *)o + op->offset;
+        if (op->type == T_FLAG) { *(int *)field = 1; continue; }
+        if (i + 1 >= argc) {
+            fprintf(stderr, "jade %s: %s needs a value (see jade %s --help)\n", cmd, a, cmd);
+            return 0;
+        }
+        const char *v = argv[++i];
+        double d;
+        switch (op->type) {
+        case T_STR:
+            if (!*v) { fprintf(stderr, "jade %s: %s: empty value\n", cmd, a); return 0; }
+            *(const char **)field = v;
+            break;
+        case T_INT:
+            if (!parse_double(v, op->lo, op->hi, &d) || d != floor(d)) {
+                fprintf(stderr, "jade %s: %s: expected a whole number from %.0f to %.0f, got '%s'\n", cmd, a, op->lo, op->hi, v);
+                return 0;
+            }
+            *(int *)field = (int)d;
+            break;
+        case T_FLOAT:
+            if (!parse_double(v, op->lo, op->hi, &d)) {
+                fprintf(stderr, "jade %s: %s: expected a number from %g to %g, got '%s'\n", cmd, a, op->lo, op->hi, v);
+                return 0;
+            }
+            *(float *)field = (float)d;
+            if (op->offset == OFF(scene.eta)) o->has_eta = 1;
+            break;
+        case T_FLOAT3: {
+            char buf[128];
+            snprintf(buf, sizeof buf, "%s", v);
+            float *f3 = (float *)field;
+            char *save = NULL, *tok = strtok_r(buf, ",", &save);
+            int n = 0;
+            for (; tok && n < 3; tok = strtok_r(NULL, ",", &save), n++)
+                if (!parse_double(tok, op->lo, op->hi, &d)) break; else f3[n] = (float)d;
+            if (n != 3 || tok) {
+                fprintf(stderr, "jade %s: %s: expected three numbers R,G,B from %g to %g, got '%s'\n", cmd, a, op->lo, op->hi, v);
+                return 0;
+            }
+            if (op->offset == OFF(scene.sigma_s)) o->has_sigma_s = 1; else o->has_sigma_a = 1;
+            break;
+        }
+        case T_SIZE: {
+            int w = 0, h = 0;
+            char extra;
+            if (sscanf(v, "%dx%d%c", &w, &h, &extra) != 2 || w < op->lo || h < op->lo || w > op->hi || h > op->hi) {
+                fprintf(stderr, "jade %s: %s: expected WxH from 16x16 to 4096x4096, got '%s'\n", cmd, a, v);
+                return 0;
+            }
+            o->width = w;
+            o->height = h;
+            break;
+        }
+        case T_MODE: {
+            jd_mode m;
+            if (!strcmp(v, "all") && (command & JD_OPT_BENCH)) { o->mode_list = v; break; }
+            if (!jd_mode_parse(v, &m)) {
+                fprintf(stderr, "jade %s: %s: expected none, single or dual%s, got '%s'\n", cmd, a,
+                        (command & JD_OPT_BENCH) ? " or all" : "", v);
+                return 0;
+            }
+            o->mode_list = v;
+            o->scene.mode = m;
+            break;
+        }
+        case T_PRECISION:
+            if (!strcmp(v, "auto")) o->rdesc.precision = JD_PRECISION_AUTO;
+            else if (!strcmp(v, "highp")) o->rdesc.precision = JD_PRECISION_HIGHP;
+            else if (!strcmp(v, "mediump")) o->rdesc.precision = JD_PRECISION_MEDIUMP;
+            else {
+                fprintf(stderr, "jade %s: %s: expected auto, highp or mediump, got '%s'\n", cmd, a, v);
+                return 0;
+            }
+            break;
+        case T_FLAG:
+            break;
+        }
+    }
+    return 1;
+}
+
+int jd_options_finish(jd_options *o, const char *cmd)
+{
+    const jd_material *m = jd_material_find(o->material);
+    if (!m) {
+        fprintf(stderr, "jade %s: --material: unknown material '%s' (see jade %s --help)\n", cmd, o->material, cmd);
+        return 0;
+    }
+    if (!o->has_sigma_s) memcpy(o->scene.sigma_s, m->sigma_s, sizeof m->sigma_s);
+    if (!o->has_sigma_a) memcpy(o->scene.sigma_a, m->sigma_a, sizeof m->sigma_a);
+    if (!o->has_eta) o->scene.eta = m->eta;
+    if (o->rdesc.cube_size && o->rdesc.cube_size % 8) {
+        fprintf(stderr, "jade %s: --cube-size: %d is not a multiple of 8\n", cmd, o->rdesc.cube_size);
+        return 0;
+    }
+    return 1;
+}

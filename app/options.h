@@ -1,0 +1,35 @@
+/* Command-line options shared by jade's commands, table-driven so every
+ * command gets the same parsing, help text and errors. */
+#ifndef JD_OPTIONS_H
+#define JD_OPTIONS_H
+
+#include "renderer.h"
+#include "mesh_load.h"
+
+typedef struct jd_options {
+    const char *mesh;         /* NULL: the default asset */
+    const char *out;
+    const char *sheet;
+    const char *material;
+    const char *mode_list;    /* bench: "all" or one mode */
+    int width, height;
+    int frames;
+    int budget_mb;
+    int json;
+    jd_load_desc load;
+    jd_renderer_desc rdesc;
+    jd_scene scene;
+    int has_sigma_s, has_sigma_a, has_eta;
+} jd_options;
+
+enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4 };
+
+void jd_options_defaults(jd_options *o);
+/* Parses argv[first..argc); prints a one-line error and returns 0 on bad input.
+ * Returns -1 after printing help. */
+int jd_options_parse(jd_options *o, int command, const char *cmdname, int argc, char **argv, int first);
+void jd_options_help(int command, const char *cmdname, const char *summary);
+/* Applies --material and explicit coefficients to the scene. */
+int jd_options_finish(jd_options *o, const char *cmdname);
+
+#endif

@@ -1,0 +1,96 @@
+#include "session.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#ifndef JD_ASSET_INSTALL_DIR
+#define JD_ASSET_INSTALL_DIR "/usr/local/share/jade"
+#endif
+
+double jd_now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+int jd_default_asset(char *out, size_t cap)
+{
+    char exe[4096];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+        exe[n] = 0;
+        char *slash = strrchr(exe, '/');
+        if (slash) {
+            *slash = 0;
+            snprintf(out, cap, "%s/../assets/default.drc", exe);
+            if (access(out, R_OK) == 0) return 1;
+            snprintf(out, cap, "%s/assets/default.drc", exe);
+            if (access(out, R_OK) == 0) return 1;
+        }
+    }
+    snprintf(out, cap, "%s/default.drc", JD_ASSET_INSTALL_DIR);
+    return access(out, R_OK) == 0;
+}
+
+int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
+{
+    memset(s, 0, sizeof *s);
+    s->t_start_ms = jd_now_ms();
+    jd_error err = {0};
+    if (o->mesh) {
+        snprintf(s->mesh_path, sizeof s->mesh_path, "%s", o->mesh);
+    } else if (!jd_default_asset(s->mesh_path, sizeof s->mesh_path)) {
+        fprintf(stderr, "jade %s: the default asset default.drc is not beside the program or in %s; pass --mesh\n", cmd,
+                JD_ASSET_INSTALL_DIR);
+        return 0;
+    }
+    /* The one allocation of the run: everything the core keeps lives here. */
+    size_t budget = (size_t)o->budget_mb << 20;
+    s->memory = malloc(budget);
+    if (!s->memory) {
+        fprintf(stderr, "jade %s: cannot reserve the %d MiB memory budget\n", cmd, o->budget_mb);
+        return 0;
+    }
+    jd_arena_init(&s->arena, s->memory, budget);
+
+    /* Before any GL: the loader forks, and a GL driver may have threads. */
+    jd_load_desc ld = o->load;
+    ld.path = s->mesh_path;
+    ld.allow_32bit_indices = 1; /* the renderer checks the device later */
+    if (jd_mesh_load_draco(&ld, &s->arena, &s->mesh, &s->load, &err)) {
+        fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+        return 0;
+    }
+    jd_platform_desc pd = {"headless", o->width, o->height};
+    if (jd_platform_open(&pd, &s->platform, &err)) {
+        fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+        return 0;
+    }
+    if (jd_gl_caps_query(&s->caps, &err)) {
+        fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+        return 0;
+    }
+    jd_renderer_desc rd = o->rdesc;
+    rd.mesh = &s->mesh;
+    rd.caps = &s->caps;
+    rd.target_fbo = jd_platform_framebuffer(s->platform);
+    rd.width = o->width;
+    rd.height = o->height;
+    if (jd_renderer_create(&rd, &s->arena, &s->renderer, &err)) {
+        fprintf(stderr, "jade %s: %s: %s\n", cmd, s->mesh_path, err.msg);
+        return 0;
+    }
+    return 1;
+}
+
+void jd_session_close(jd_session *s)
+{
+    if (s->renderer) jd_renderer_destroy(s->renderer);
+    if (s->platform) jd_platform_close(s->platform);
+    free(s->memory);
+    memset(s, 0, sizeof *s);
+}

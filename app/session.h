@@ -1,0 +1,29 @@
+/* Wires the pieces in the one direction data flows: the platform gives a
+ * context, the core renders frames, the program decides what to do with them. */
+#ifndef JD_SESSION_H
+#define JD_SESSION_H
+
+#include "gl_caps.h"
+#include "options.h"
+#include "platform.h"
+
+typedef struct jd_session {
+    void *memory;
+    jd_arena arena;
+    jd_mesh mesh;
+    jd_load_stats load;
+    char mesh_path[4096];
+    jd_platform *platform;
+    jd_gl_caps caps;
+    jd_renderer *renderer;
+    double t_start_ms;
+} jd_session;
+
+double jd_now_ms(void);
+/* Returns 0 after printing a one-line error. */
+int jd_session_open(jd_session *s, jd_options *o, const char *cmd);
+void jd_session_close(jd_session *s);
+/* The default asset beside the program (build tree) or installed. */
+int jd_default_asset(char *out, size_t cap);
+
+#endif
