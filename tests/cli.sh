@@ -1,0 +1,51 @@
+#!/bin/sh
+# The program's behaviour on good and bad command lines: one-line errors,
+# non-zero exits, no crash and no half-written output.
+jade=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0 fail=0
+expect() { # expect NAME WANT_RC GREP_PATTERN -- command...
+    name=$1 want=$2 pat=$3
+    shift 4
+    "$@" >"$tmp/out" 2>"$tmp/err"
+    rc=$?
+    lines=$(wc -l < "$tmp/err")
+    if [ "$rc" -eq "$want" ] && { [ -z "$pat" ] || grep -q -- "$pat" "$tmp/out" "$tmp/err"; } &&
+       { [ "$want" -eq 0 ] || [ "$lines" -eq 1 ]; }; then
+        pass=$((pass + 1))
+        [ "$want" -ne 0 ] && echo "ok   $name: $(cat "$tmp/err")"
+    else
+        fail=$((fail + 1))
+        echo "FAIL $name: rc=$rc (want $want), stderr lines=$lines"
+        cat "$tmp/out" "$tmp/err"
+    fi
+}
+expect "no command" 2 "no command" -- "$jade"
+expect "help" 0 "render" -- "$jade" --help
+expect "render help" 0 "--material" -- "$jade" render --help
+expect "bench help" 0 "--frames" -- "$jade" bench --help
+expect "unknown command" 2 "unknown command 'paint'" -- "$jade" paint
+expect "unknown flag" 2 "unknown option '--colour'" -- "$jade" render --colour red
+expect "missing value" 2 "needs a value" -- "$jade" render --size
+expect "bad size" 2 "expected WxH" -- "$jade" render --size 12xabc
+expect "size out of range" 2 "expected WxH" -- "$jade" render --size 99999x2
+expect "bad mode" 2 "none, single or dual" -- "$jade" render --mode triple
+expect "bad material" 2 "unknown material 'jelly'" -- "$jade" render --material jelly
+expect "bad number" 2 "expected a number" -- "$jade" render --eta 1.3x
+expect "nan number" 2 "expected a number" -- "$jade" render --eta nan
+expect "bad triple" 2 "three numbers" -- "$jade" render --sigma-a 1,2
+expect "bad cube size" 2 "multiple of 8" -- "$jade" render --cube-size 60
+expect "missing mesh" 1 "cannot open" -- "$jade" render --mesh "$tmp/nope.drc" --out "$tmp/x.png"
+printf 'hello' > "$tmp/hello.drc"
+expect "non-draco mesh" 1 "not a Draco file" -- "$jade" render --mesh "$tmp/hello.drc" --out "$tmp/x.png"
+expect "unwritable output" 1 "cannot write PNG" -- "$jade" render --size 64x64 --out "$tmp/no/such/dir/x.png"
+expect "tiny budget" 1 "memory budget exhausted" -- "$jade" render --budget-mb 1 --out "$tmp/x.png"
+left=$(ls "$tmp" | grep -c '\.tmp\.' || true)
+if [ ! -e "$tmp/x.png" ] && [ "$left" -eq 0 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: a failed run left output behind"; ls "$tmp"; fi
+expect "render default" 0 "wrote $tmp/ok.png" -- "$jade" render --size 96x64 --out "$tmp/ok.png"
+if [ -s "$tmp/ok.png" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: no PNG written"; fi
+expect "sheet" 0 "none | single | dual" -- "$jade" render --size 64x64 --sheet "$tmp/sheet.png"
+expect "info" 0 "fragment highp" -- "$jade" info
+echo "cli: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,47 @@
+/* Compares two PNGs: RMSE and largest difference over RGB (0-255 scale), and
+ * the fraction of pixels off by more than a threshold. Prints the measured
+ * figures and fails when they exceed the given tolerances. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <stb_image.h>
+
+int main(int argc, char **argv)
+{
+    if (argc < 3) {
+        fprintf(stderr, "usage: imgcmp A.png B.png [--max-rmse X] [--max-bad-frac F] [--bad-threshold T]\n");
+        return 2;
+    }
+    double max_rmse = 2.0, max_bad = 0.005, thr = 24;
+    for (int i = 3; i + 1 < argc; i += 2) {
+        if (!strcmp(argv[i], "--max-rmse")) max_rmse = atof(argv[i + 1]);
+        else if (!strcmp(argv[i], "--max-bad-frac")) max_bad = atof(argv[i + 1]);
+        else if (!strcmp(argv[i], "--bad-threshold")) thr = atof(argv[i + 1]);
+    }
+    int wa, ha, wb, hb, c;
+    unsigned char *a = stbi_load(argv[1], &wa, &ha, &c, 4);
+    unsigned char *b = stbi_load(argv[2], &wb, &hb, &c, 4);
+    if (!a || !b) { fprintf(stderr, "imgcmp: cannot read %s\n", !a ? argv[1] : argv[2]); return 2; }
+    if (wa != wb || ha != hb) { printf("imgcmp: sizes differ: %dx%d vs %dx%d\n", wa, ha, wb, hb); return 1; }
+    double se = 0, worst = 0;
+    long bad = 0, n = (long)wa * ha;
+    for (long i = 0; i < n; i++) {
+        double pix = 0;
+        for (int k = 0; k < 3; k++) {
+            double d = fabs((double)a[4 * i + k] - b[4 * i + k]);
+            se += d * d;
+            if (d > worst) worst = d;
+            if (d > pix) pix = d;
+        }
+        if (pix > thr) bad++;
+    }
+    double rmse = sqrt(se / (3.0 * n)), frac = (double)bad / n;
+    int ok = rmse <= max_rmse && frac <= max_bad;
+    printf("imgcmp %s vs %s: rmse %.3f (max %.3f), largest difference %.0f, pixels off by >%.0f: %.4f%% (max %.4f%%) -> %s\n",
+           argv[1], argv[2], rmse, max_rmse, worst, thr, 100 * frac, 100 * max_bad, ok ? "ok" : "DIFFERENT");
+    stbi_image_free(a);
+    stbi_image_free(b);
+    return ok ? 0 : 1;
+}

@@ -1,0 +1,124 @@
+/* GL tests on the headless platform (llvmpipe in CI). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "mesh_load.h"
+#include "platform.h"
+#include "renderer.h"
+#include "sh.h"
+
+/* Linked with -Wl,--wrap=malloc,...: every heap call made from the core's
+ * objects (statically linked here) lands in these counters; the GL driver's
+ * own calls, from its shared library, do not. */
+static unsigned long core_allocs;
+void *__real_malloc(size_t);
+void *__real_calloc(size_t, size_t);
+void *__real_realloc(void *, size_t);
+void __real_free(void *);
+void *__wrap_malloc(size_t n) { core_allocs++; return __real_malloc(n); }
+void *__wrap_calloc(size_t a, size_t b) { core_allocs++; return __real_calloc(a, b); }
+void *__wrap_realloc(void *p, size_t n) { core_allocs++; return __real_realloc(p, n); }
+void __wrap_free(void *p) { if (p) core_allocs++; __real_free(p); }
+
+static unsigned char mem[48 << 20];
+
+static jd_renderer *make(jd_arena *a, jd_mesh *m, const jd_gl_caps *caps, jd_platform *p, jd_precision prec, int size)
+{
+    jd_renderer_desc d = {0};
+    d.mesh = m;
+    d.caps = caps;
+    d.target_fbo = jd_platform_framebuffer(p);
+    d.width = d.height = size;
+    d.precision = prec;
+    jd_renderer *r = NULL;
+    jd_error err = {0};
+    jd_result res = jd_renderer_create(&d, a, &r, &err);
+    CHECK(res == JD_OK, "renderer: %s", err.msg);
+    return res ? NULL : r;
+}
+
+static void test_sh_reduction(jd_renderer *r, const char *label, double tol)
+{
+    static uint8_t atlas[256 * 3 * 256 * 2 * 4];
+    uint8_t sh27[27 * 4];
+    jd_scene s;
+    jd_scene_defaults(&s, jd_material_find("marble"));
+    s.mode = JD_MODE_SINGLE;
+    double worst_rel = 0;
+    for (int k = 0; k < 4; k++) {
+        s.light_azimuth = 40.0f + 90.0f * k;
+        s.light_elevation = 30.0f - 20.0f * k;
+        jd_error err = {0};
+        int n = 0;
+        CHECK(jd_renderer_frame(r, &s, NULL, &err) == JD_OK, "frame: %s", err.msg);
+        CHECK(jd_renderer_read_capture(r, atlas, sh27, &n, &err) == JD_OK, "readback: %s", err.msg);
+        double ref[9][3];
+        jd_sh_project_atlas(atlas, n, ref);
+        jd_sh9 gpu;
+        jd_sh_decode(sh27, jd_renderer_highp(r), &gpu);
+        double dc = fmax(fabs(ref[0][0]), fmax(fabs(ref[0][1]), fabs(ref[0][2])));
+        CHECK(dc > 0.05, "the capture sees the lit object (DC %.4f)", dc);
+        for (int i = 0; i < 9; i++)
+            for (int c = 0; c < 3; c++) {
+                double rel = fabs(gpu.c[i][c] - ref[i][c]) / dc;
+                if (rel > worst_rel) worst_rel = rel;
+            }
+    }
+    printf("SH reduction (%s packing): largest coefficient error %.4f%% of DC over 4 light directions (limit %.1f%%)\n",
+           label, 100 * worst_rel, 100 * tol);
+    CHECK(worst_rel <= tol, "%s SH error %.4f%% of DC", label, 100 * worst_rel);
+}
+
+int main(int argc, char **argv)
+{
+    const char *mesh_path = argc > 1 ? argv[1] : "assets/default.drc";
+    jd_arena a;
+    jd_arena_init(&a, mem, sizeof mem);
+    jd_error err = {0};
+    jd_mesh mesh;
+    jd_load_desc ld = {.path = mesh_path, .allow_32bit_indices = 1};
+    if (jd_mesh_load_draco(&ld, &a, &mesh, NULL, &err)) {
+        printf("cannot load %s: %s\n", mesh_path, err.msg);
+        return 1;
+    }
+    jd_platform *p = NULL;
+    jd_platform_desc pd = {"headless", 64, 64};
+    if (jd_platform_open(&pd, &p, &err)) {
+        printf("no GL: %s\n", err.msg);
+        return 1;
+    }
+    jd_gl_caps caps;
+    jd_gl_caps_query(&caps, &err);
+    printf("GL: %s | %s | %s\n", caps.renderer, caps.version, jd_platform_describe(p));
+
+    size_t mark = jd_arena_mark(&a);
+    jd_renderer *r = make(&a, &mesh, &caps, p, JD_PRECISION_AUTO, 64);
+    if (r) {
+        /* 100 frames per mode, light orbiting: the core must not allocate. */
+        jd_scene s;
+        jd_scene_defaults(&s, NULL);
+        core_allocs = 0;
+        for (int m = 0; m < JD_MODE_COUNT; m++)
+            for (int i = 0; i < 100; i++) {
+                s.mode = (jd_mode)m;
+                s.light_azimuth = 3.6f * i;
+                if (jd_renderer_frame(r, &s, NULL, &err)) { CHECK(0, "frame: %s", err.msg); break; }
+            }
+        printf("core heap calls during 300 frames (100 per mode): %lu\n", core_allocs);
+        CHECK(core_allocs == 0, "the frame loop allocates nothing (%lu calls)", core_allocs);
+        printf("render targets: %zu bytes at 64x64\n", jd_renderer_target_bytes(r));
+        if (caps.frag_highp_precision >= 23) test_sh_reduction(r, jd_renderer_highp(r) ? "highp" : "mediump", 0.01);
+        jd_renderer_destroy(r);
+    }
+    jd_arena_reset(&a, mark);
+    r = make(&a, &mesh, &caps, p, JD_PRECISION_MEDIUMP, 64);
+    if (r) {
+        test_sh_reduction(r, "mediump", 0.03);
+        jd_renderer_destroy(r);
+    }
+    jd_platform_close(p);
+    return jd_check_summary("gl");
+}

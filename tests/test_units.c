@@ -1,0 +1,162 @@
+/* GL-free units: arena, math, mesh helpers, materials, Draco header, SH. */
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "arena.h"
+#include "check.h"
+#include "draco_header.h"
+#include "material.h"
+#include "mesh.h"
+#include "sh.h"
+#include "vmath.h"
+
+static void test_arena(void)
+{
+    static unsigned char mem[1024];
+    jd_arena a;
+    jd_error err = {0};
+    jd_arena_init(&a, mem, sizeof mem);
+    void *p = jd_arena_alloc(&a, 10, 64, "x", &err);
+    CHECK(p && ((uintptr_t)p & 63) == 0, "aligned allocation");
+    void *t = jd_arena_alloc_top(&a, 100, 16, "t", &err);
+    CHECK(t && ((uintptr_t)t & 15) == 0 && (unsigned char *)t + 100 <= mem + sizeof mem, "top allocation inside");
+    size_t mark = jd_arena_top_mark(&a);
+    CHECK(jd_arena_alloc_top(&a, 200, 16, "t2", &err) != NULL, "second top allocation");
+    jd_arena_top_reset(&a, mark);
+    CHECK(a.top == mark, "top reset");
+    CHECK(jd_arena_alloc(&a, 5000, 16, "the big thing", &err) == NULL, "over budget fails");
+    CHECK(err.code == JD_ERR_BUDGET && strstr(err.msg, "the big thing"), "budget error names the allocation: %s", err.msg);
+    CHECK(a.peak >= 10 + 300, "peak tracks both ends (%zu)", a.peak);
+    jd_arena_reset(&a, 0);
+    CHECK(jd_arena_used(&a) == a.top, "reset bottom");
+}
+
+static void test_math(void)
+{
+    jd_mat4 v = jd_m4_look_at(jd_v3(0, 0, 5), jd_v3(0, 0, 0), jd_v3(0, 1, 0));
+    jd_vec3 p = jd_m4_point(v, jd_v3(0, 0, 0));
+    CHECK(fabsf(p.z + 5) < 1e-5f && fabsf(p.x) < 1e-6f, "look_at puts the target at -5 z (%g)", (double)p.z);
+    jd_mat4 pr = jd_m4_perspective(90, 1, 1, 10);
+    jd_vec3 n = jd_m4_point(pr, jd_v3(0, 0, -1)), f = jd_m4_point(pr, jd_v3(0, 0, -10));
+    CHECK(fabsf(n.z + 1) < 1e-5f && fabsf(f.z - 1) < 1e-4f, "perspective maps near/far to -1/1");
+    jd_mat4 o = jd_m4_ortho(-1, 1, -1, 1, 1, 3);
+    jd_vec3 mid = jd_m4_point(o, jd_v3(0.5f, 0, -2));
+    CHECK(fabsf(mid.z) < 1e-6f && fabsf(mid.x - 0.5f) < 1e-6f, "ortho is linear in depth");
+    jd_vec3 d = jd_v3_from_angles(90, 0);
+    CHECK(fabsf(d.x - 1) < 1e-6f, "azimuth 90 is +X");
+}
+
+static void test_mesh(void)
+{
+    static unsigned char mem[1 << 16];
+    jd_arena a;
+    jd_error err = {0};
+    jd_arena_init(&a, mem, sizeof mem);
+    float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    float nrm[12];
+    uint32_t idx[] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    jd_mesh m = {0};
+    m.num_vertices = 4;
+    m.positions = pos;
+    m.normals = nrm;
+    CHECK(jd_mesh_set_indices(&m, idx, 12, 0, &a, &err) == JD_OK && m.index_size == 2, "narrowed to 16-bit");
+    CHECK(jd_mesh_validate(&m, "tet", &err) == JD_OK, "tetrahedron validates");
+    jd_mesh_compute_normals(&m);
+    jd_mesh_compute_bounds(&m);
+    CHECK(nrm[0] < -0.5f && nrm[1] < -0.5f && nrm[2] < -0.5f, "corner normal points out (%g %g %g)", (double)nrm[0],
+          (double)nrm[1], (double)nrm[2]);
+    CHECK(m.bmax.x == 1 && m.bmin.y == 0, "bounds");
+    ((uint16_t *)m.indices)[4] = 9;
+    CHECK(jd_mesh_validate(&m, "bad.drc", &err) == JD_ERR_FORMAT && strstr(err.msg, "bad.drc") &&
+              strstr(err.msg, "vertex 9"),
+          "out-of-range index refused: %s", err.msg);
+    ((uint16_t *)m.indices)[4] = 1;
+    pos[5] = NAN;
+    CHECK(jd_mesh_validate(&m, "nan.drc", &err) == JD_ERR_FORMAT, "non-finite position refused: %s", err.msg);
+    pos[5] = 0;
+    jd_mesh proxy;
+    CHECK(jd_mesh_build_proxy(&m, 8, &a, &proxy, &err) == JD_OK && proxy.num_indices == 12, "proxy of a tiny mesh keeps it");
+    m.num_vertices = 70000;
+    CHECK(jd_mesh_set_indices(&m, idx, 12, 0, &a, &err) == JD_ERR_UNSUPPORTED && strstr(err.msg, "OES_element_index_uint"),
+          "32-bit indices refused without the extension: %s", err.msg);
+}
+
+static void test_materials(void)
+{
+    /* The table's last column, Rd total (Jensen et al. 2001). */
+    static const struct { const char *name; float rd[3]; } expect[] = {
+        {"apple", {.85f, .84f, .53f}},    {"chicken1", {.31f, .16f, .13f}}, {"chicken2", {.32f, .16f, .11f}},
+        {"cream", {.98f, .90f, .72f}},    {"ketchup", {.16f, .01f, .00f}},  {"marble", {.83f, .79f, .75f}},
+        {"potato", {.76f, .61f, .21f}},   {"skimmilk", {.81f, .81f, .68f}}, {"skin1", {.44f, .23f, .13f}},
+        {"skin2", {.62f, .43f, .34f}},    {"wholemilk", {.91f, .88f, .76f}},
+    };
+    CHECK(jd_material_count == 11, "eleven materials");
+    for (size_t i = 0; i < sizeof expect / sizeof expect[0]; i++) {
+        const jd_material *m = jd_material_find(expect[i].name);
+        CHECK(m != NULL, "material %s exists", expect[i].name);
+        if (!m) continue;
+        jd_dipole d;
+        jd_dipole_init(&d, m->sigma_s, m->sigma_a, m->eta, 1.0f);
+        for (int c = 0; c < 3; c++)
+            CHECK(fabs(d.rd_total[c] - expect[i].rd[c]) <= 0.011, "%s Rd[%d] = %.3f, table %.2f", m->name, c,
+                  d.rd_total[c], (double)expect[i].rd[c]);
+        /* M(0) is the total diffuse reflectance, and the tail decreases. */
+        CHECK(fabs(jd_dipole_tail(&d, 1, 0.0) - d.rd_total[1]) < 1e-9, "%s M(0) = Rd", m->name);
+        CHECK(jd_dipole_tail(&d, 1, 5.0) < jd_dipole_tail(&d, 1, 1.0), "%s M decreases", m->name);
+    }
+    CHECK(fabs(1.0 - jd_dipole_fdr(1.3) - 0.555) < 0.002, "1-Fdr at eta 1.3 is 0.555");
+    CHECK(fabs(1.0 - jd_dipole_fdr(1.5) - 0.403) < 0.002, "1-Fdr at eta 1.5 is 0.403");
+}
+
+static void test_draco_header(void)
+{
+    jd_draco_info info;
+    jd_error err = {0};
+    /* Sequential 2.2 mesh declaring a billion faces in a 16-byte file. */
+    uint8_t seq[] = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 0, 0, 0, 0x80, 0x94, 0xeb, 0xdc, 0x03, 3};
+    CHECK(jd_draco_peek(seq, sizeof seq, "seq.drc", &info, &err) == JD_OK && info.num_faces == 1000000000u,
+          "declared faces read (%u)", info.num_faces);
+    uint8_t pc[] = {'D', 'R', 'A', 'C', 'O', 2, 2, 0, 0, 0, 0, 1, 1};
+    CHECK(jd_draco_peek(pc, sizeof pc, "pc.drc", &info, &err) == JD_ERR_FORMAT && strstr(err.msg, "point cloud"),
+          "point cloud refused by name: %s", err.msg);
+    CHECK(jd_draco_peek(seq, 0, "e.drc", &info, &err) == JD_ERR_FORMAT && strstr(err.msg, "empty"), "empty: %s", err.msg);
+    uint8_t bad[] = "PNG\r\n whatever";
+    CHECK(jd_draco_peek(bad, sizeof bad, "x.png", &info, &err) == JD_ERR_FORMAT && strstr(err.msg, "magic"), "magic: %s", err.msg);
+    CHECK(jd_draco_peek(seq, 12, "t.drc", &info, &err) == JD_ERR_FORMAT && strstr(err.msg, "truncated"), "truncated: %s", err.msg);
+    uint8_t ver[] = {'D', 'R', 'A', 'C', 'O', 9, 0, 1, 0, 0, 0, 1, 1};
+    CHECK(jd_draco_peek(ver, sizeof ver, "v.drc", &info, &err) == JD_ERR_FORMAT && strstr(err.msg, "version 9.0"), "version: %s", err.msg);
+    /* Metadata claiming 2^32-1 attribute entries in a few bytes. */
+    uint8_t meta[] = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 0, 0, 0x80, 0xff, 0xff, 0xff, 0xff, 0x0f, 0, 0};
+    CHECK(jd_draco_peek(meta, sizeof meta, "m.drc", &info, &err) == JD_ERR_FORMAT && strstr(err.msg, "metadata"),
+          "absurd metadata counts refused: %s", err.msg);
+}
+
+static void test_sh(void)
+{
+    /* A uniform white environment projects to DC = sqrt(4 pi) (Y00 * 4 pi)
+     * and nothing else; the texel solid angles must sum to about 4 pi. */
+    enum { N = 16 };
+    static uint8_t atlas[3 * N * 2 * N * 4];
+    memset(atlas, 255, sizeof atlas);
+    double c[9][3];
+    jd_sh_project_atlas(atlas, N, c);
+    CHECK(fabs(c[0][0] - 0.282095 * 4 * M_PI) < 0.02 * 0.282095 * 4 * M_PI, "DC of white = %.4f", c[0][0]);
+    double rest = 0;
+    for (int k = 1; k < 9; k++) rest += fabs(c[k][1]);
+    CHECK(rest < 0.02, "higher bands of a constant vanish (%.4f)", rest);
+    /* Packing decode: a stored 0.5 in both precisions. */
+    uint8_t px[4] = {127, 128, 0, 255};
+    CHECK(fabs(jd_unpack_bytes(px, 0) - (127 / 255.0 + 128 / 65025.0)) < 1e-12, "mediump decode");
+}
+
+int main(void)
+{
+    test_arena();
+    test_math();
+    test_mesh();
+    test_materials();
+    test_draco_header();
+    test_sh();
+    return jd_check_summary("units");
+}

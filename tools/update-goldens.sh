@@ -1,0 +1,14 @@
+#!/bin/sh
+# Re-renders the golden images after a deliberate change to the picture.
+# Look at them before committing: a golden image is a claim that it is right.
+set -eu
+cd "$(dirname "$0")/.."
+cmake --build build >/dev/null
+sh tests/encode_bunny.sh ../shared build/testdata/bunny.drc
+for mode in none single dual; do
+    for mat in marble skin1 ketchup; do
+        ./build/jade render --mesh build/testdata/bunny.drc --out "tests/golden/bunny_${mode}_${mat}.png" \
+            --size 256x256 --mode "$mode" --material "$mat" --cam-azimuth 20 --precision highp >/dev/null
+    done
+done
+ls -la tests/golden
