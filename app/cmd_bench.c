@@ -28,7 +28,8 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
     jd_scene sc = o->scene;
     sc.mode = mode;
     jd_error err = {0};
-    double pass[JD_PASS_COUNT] = {0};
+    double pass[JD_PASS_COUNT] = {0}, gpu[JD_PASS_COUNT] = {0};
+    int gpu_frames = 0;
     jd_frame_stats st;
     /* Warm-up frames build driver-side state (shader variants, caches). */
     for (int i = 0; i < 5; i++) {
@@ -53,6 +54,10 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
         sc.light_azimuth = o->scene.light_azimuth + 360.0f * (float)i / 120.0f;
         if (jd_renderer_frame(s->renderer, &sc, &st, &err)) { jd_renderer_set_timing(s->renderer, 0); goto fail; }
         for (int p = 0; p < JD_PASS_COUNT; p++) pass[p] += st.pass_ms[p] / timed;
+        if (st.gpu_valid) {
+            gpu_frames++;
+            for (int p = 0; p < JD_PASS_COUNT; p++) gpu[p] += st.gpu_ms[p];
+        }
     }
     jd_renderer_set_timing(s->renderer, 0);
     double sorted_sum = 0;
@@ -64,7 +69,14 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
            first ? "" : ",\n", jd_mode_name(mode), med, p95, sorted_sum / o->frames, 1000.0 / med, allocs);
     for (int p = 0; p < JD_PASS_COUNT; p++)
         printf("%s\"%s\": %.3f", p ? ", " : "", jd_pass_name(p), pass[p]);
-    printf("}}");
+    printf("}");
+    if (gpu_frames) {
+        printf(", \"gpu_pass_ms_mean\": {");
+        for (int p = 0; p < JD_PASS_COUNT; p++)
+            printf("%s\"%s\": %.3f", p ? ", " : "", jd_pass_name(p), gpu[p] / gpu_frames);
+        printf("}");
+    }
+    printf("}");
     return 1;
 fail:
     fprintf(stderr, "jade bench: %s\n", err.msg);
@@ -104,7 +116,8 @@ int jd_cmd_bench(int argc, char **argv)
     printf("  \"size\": \"%dx%d\", \"frames\": %d, \"material\": \"%s\", \"cube_size\": %d, \"precision\": \"%s\",\n",
            o.width, o.height, o.frames, o.material, o.rdesc.cube_size ? o.rdesc.cube_size : 64,
            jd_renderer_highp(s.renderer) ? "highp" : "mediump");
-    printf("  \"gl_renderer\": \"%s\", \"platform\": \"%s\",\n", s.caps.renderer, jd_platform_describe(s.platform));
+    printf("  \"gl_renderer\": \"%s\", \"platform\": \"%s\", \"gpu_timer_query\": %s,\n", s.caps.renderer,
+           jd_platform_describe(s.platform), jd_renderer_has_gpu_timer(s.renderer) ? "true" : "false");
     printf("  \"time_to_first_frame_ms\": %.1f, \"draco_decode_ms\": %.2f, \"file_bytes\": %zu,\n", ttff,
            s.load.decode_ms, s.load.file_bytes);
     printf("  \"arena_budget_bytes\": %zu, \"arena_peak_bytes\": %zu, \"render_target_bytes\": %zu,\n", s.arena.size,

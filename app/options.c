@@ -45,6 +45,7 @@ static const opt table[] = {
     {"--cube-size", T_INT, OFF(rdesc.cube_size), 8, 256, R | B, "N          capture face size, multiple of 8 [64]"},
     {"--light-map", T_INT, OFF(rdesc.light_map_size), 16, 2048, R | B, "N          light depth map size [256]"},
     {"--proxy-cells", T_INT, OFF(rdesc.proxy_cells), 4, 64, R | B, "N          proxy mesh grid [40]"},
+    {"--spread-divisor", T_INT, OFF(rdesc.spread_divisor), 1, 16, R | B, "N          spread layers at 1/N resolution [8]"},
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
     {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, R | B, "N          memory budget of the core [8]"},

@@ -80,6 +80,7 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
     rd.target_fbo = jd_platform_framebuffer(s->platform);
     rd.width = o->width;
     rd.height = o->height;
+    rd.get_proc = jd_platform_gl_proc;
     if (jd_renderer_create(&rd, &s->arena, &s->renderer, &err)) {
         fprintf(stderr, "jade %s: %s: %s\n", cmd, s->mesh_path, err.msg);
         return 0;

@@ -11,7 +11,7 @@
 #include "vmath.h"
 
 #define SH_BLOCK 8
-#define BLUR_TAPS 8
+#define BLUR_TAPS 4
 
 typedef struct target {
     GLuint tex, fbo, depth;
@@ -22,10 +22,21 @@ typedef struct shade_prog {
     GLuint id;
     GLint mvp, light_mvp, eye, sh, box_min, box_max, inv_eta, inset;
     GLint light_dir, albedo, light_color, shading, depth, tail, f0, a0_scale;
-    GLint a1, a2, inv_viewport, w0, w1, w2;
+    GLint spread, inv_viewport, w0;
 } shade_prog;
 
 #define TAIL_SIZE 256
+
+/* GL_EXT_disjoint_timer_query, resolved at start-up when present. */
+typedef struct timer_query {
+    PFNGLGENQUERIESEXTPROC gen;
+    PFNGLDELETEQUERIESEXTPROC del;
+    PFNGLBEGINQUERYEXTPROC begin;
+    PFNGLENDQUERYEXTPROC end;
+    PFNGLGETQUERYOBJECTUI64VEXTPROC result64;
+    GLuint q[JD_PASS_COUNT];
+    int ok, used[JD_PASS_COUNT];
+} timer_query;
 
 struct jd_renderer {
     jd_renderer_desc d;
@@ -33,15 +44,17 @@ struct jd_renderer {
     jd_mesh proxy, capture_proxy;
     GLuint mesh_vbo, mesh_ibo, proxy_vbo, proxy_ibo, cap_vbo, cap_ibo, quad_vbo;
     GLuint tail_tex;
+    timer_query tq;
     uint8_t *tail_px;     /* TAIL_SIZE RGBA texels, rebuilt when the material changes */
     float tail_key[9];
     GLenum mesh_index_type;
     shade_prog shade[JD_MODE_COUNT], a0;
-    GLuint depth_prog, capture_prog, project_prog, reduce_faces_prog, reduce_final_prog, blur_prog;
+    GLuint depth_prog, capture_prog, project_prog, reduce_faces_prog, reduce_final_prog, blur_prog, combine_prog;
     GLint depth_mvp;
     GLint cap_mvp, cap_light_mvp, cap_light_dir, cap_bias, cap_depth, cap_light_color;
     GLint proj_atlas, rf_src, rf_texel, rl_src, rl_texel;
     GLint blur_src, blur_step, blur_inv;
+    GLint comb_src, comb_step, comb_inv, comb_a1, comb_w1, comb_w2;
     target light, atlas, sh1, sh2, sh3, spread0, spread_tmp, spread1, spread2;
     size_t target_bytes;
     float box_half;
@@ -200,12 +213,9 @@ static void shade_locations(shade_prog *p)
     p->tail = glGetUniformLocation(id, "u_tail");
     p->f0 = glGetUniformLocation(id, "u_f0");
     p->a0_scale = glGetUniformLocation(id, "u_a0_scale");
-    p->a1 = glGetUniformLocation(id, "u_a1");
-    p->a2 = glGetUniformLocation(id, "u_a2");
+    p->spread = glGetUniformLocation(id, "u_spread");
     p->inv_viewport = glGetUniformLocation(id, "u_inv_viewport");
     p->w0 = glGetUniformLocation(id, "u_w0");
-    p->w1 = glGetUniformLocation(id, "u_w1");
-    p->w2 = glGetUniformLocation(id, "u_w2");
 }
 
 static jd_result build_programs(jd_renderer *r, jd_error *err)
@@ -253,11 +263,20 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
         return res;
     r->rl_src = glGetUniformLocation(r->reduce_final_prog, "u_src");
     r->rl_texel = glGetUniformLocation(r->reduce_final_prog, "u_src_texel");
-    snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n", BLUR_TAPS);
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 0\n", BLUR_TAPS);
     if ((res = build("shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->blur_prog, err))) return res;
     r->blur_src = glGetUniformLocation(r->blur_prog, "u_src");
     r->blur_step = glGetUniformLocation(r->blur_prog, "u_step");
     r->blur_inv = glGetUniformLocation(r->blur_prog, "u_inv_2s2");
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 1\n", BLUR_TAPS);
+    if ((res = build("shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->combine_prog, err)))
+        return res;
+    r->comb_src = glGetUniformLocation(r->combine_prog, "u_src");
+    r->comb_step = glGetUniformLocation(r->combine_prog, "u_step");
+    r->comb_inv = glGetUniformLocation(r->combine_prog, "u_inv_2s2");
+    r->comb_a1 = glGetUniformLocation(r->combine_prog, "u_a1");
+    r->comb_w1 = glGetUniformLocation(r->combine_prog, "u_w1");
+    r->comb_w2 = glGetUniformLocation(r->combine_prog, "u_w2");
     return JD_OK;
 }
 
@@ -274,7 +293,7 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     if (!d->light_map_size) d->light_map_size = 256;
     if (!d->proxy_cells) d->proxy_cells = 40;
     if (!d->capture_cells) d->capture_cells = 24;
-    if (!d->spread_divisor) d->spread_divisor = 4;
+    if (!d->spread_divisor) d->spread_divisor = 8;
     if (d->cube_size < 8 || d->cube_size > 256 || d->cube_size % SH_BLOCK)
         return jd_fail(err, JD_ERR_ARG, "cube size %d must be a multiple of %d from 8 to 256", d->cube_size, SH_BLOCK);
     if (d->light_map_size < 16 || d->light_map_size > 2048)
@@ -321,6 +340,16 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
     glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
 
+    if (d->get_proc && d->caps->ext_disjoint_timer_query) {
+        timer_query *tq = &r->tq;
+        tq->gen = (PFNGLGENQUERIESEXTPROC)d->get_proc("glGenQueriesEXT");
+        tq->del = (PFNGLDELETEQUERIESEXTPROC)d->get_proc("glDeleteQueriesEXT");
+        tq->begin = (PFNGLBEGINQUERYEXTPROC)d->get_proc("glBeginQueryEXT");
+        tq->end = (PFNGLENDQUERYEXTPROC)d->get_proc("glEndQueryEXT");
+        tq->result64 = (PFNGLGETQUERYOBJECTUI64VEXTPROC)d->get_proc("glGetQueryObjectui64vEXT");
+        tq->ok = tq->gen && tq->del && tq->begin && tq->end && tq->result64;
+        if (tq->ok) tq->gen(JD_PASS_COUNT, tq->q);
+    }
     if ((res = build_programs(r, err))) goto fail;
 
     int n = d->cube_size, nb = n / SH_BLOCK;
@@ -352,9 +381,10 @@ void jd_renderer_destroy(jd_renderer *r)
     GLuint bufs[] = {r->mesh_vbo, r->mesh_ibo, r->proxy_vbo, r->proxy_ibo, r->cap_vbo, r->cap_ibo, r->quad_vbo};
     glDeleteBuffers(7, bufs);
     if (r->tail_tex) glDeleteTextures(1, &r->tail_tex);
+    if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
     GLuint progs[] = {r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_faces_prog,
-                      r->reduce_final_prog, r->blur_prog};
+                      r->reduce_final_prog, r->blur_prog, r->combine_prog};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
     memset(r, 0, sizeof *r);
 }
@@ -363,6 +393,7 @@ size_t jd_renderer_target_bytes(const jd_renderer *r) { return r->target_bytes; 
 void jd_renderer_finish(jd_renderer *r) { (void)r; glFinish(); }
 void jd_renderer_set_timing(jd_renderer *r, int on) { r->d.timing = on; }
 int jd_renderer_highp(const jd_renderer *r) { return r->highp; }
+int jd_renderer_has_gpu_timer(const jd_renderer *r) { return r->tq.ok; }
 const jd_mesh *jd_renderer_proxy(const jd_renderer *r) { return &r->proxy; }
 
 /* ---- per frame ---------------------------------------------------------- */
@@ -591,41 +622,37 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, r->light.tex);
     }
-    if (p->a1 >= 0) {
-        glUniform1i(p->a1, 1);
-        glUniform1i(p->a2, 2);
+    if (p->spread >= 0) {
+        glUniform1i(p->spread, 1);
         glUniform2f(p->inv_viewport, 1.0f / (float)w, 1.0f / (float)h);
         glUniform3fv(p->w0, 1, f->w0);
-        glUniform3fv(p->w1, 1, f->w1);
-        glUniform3fv(p->w2, 1, f->w2);
         glActiveTexture(GL_TEXTURE1);
-        glBindTexture(GL_TEXTURE_2D, r->spread1.tex);
-        glActiveTexture(GL_TEXTURE2);
         glBindTexture(GL_TEXTURE_2D, r->spread2.tex);
         glActiveTexture(GL_TEXTURE0);
     }
 }
 
-static void blur(jd_renderer *r, const target *src, const target *dst, float dx, float dy, float step, float inv2s2)
+static void blur(jd_renderer *r, GLint step_loc, GLint inv_loc, const target *src, const target *dst, float dx,
+                 float dy, float step, float inv2s2)
 {
     glBindTexture(GL_TEXTURE_2D, src->tex);
-    glUniform2f(r->blur_step, dx * step / (float)src->w, dy * step / (float)src->h);
-    glUniform1f(r->blur_inv, inv2s2);
+    glUniform2f(step_loc, dx * step / (float)src->w, dy * step / (float)src->h);
+    glUniform1f(inv_loc, inv2s2);
     draw_quad_into(r, dst);
 }
 
 static void pass_spread(jd_renderer *r, const frame_params *f)
 {
-    /* A0 at low resolution from the proxy: these layers are blurred, so the
-     * full mesh would buy nothing. */
+    /* A0 at low resolution from the coarse capture proxy: these layers are
+     * blurred, so a finer mesh would buy nothing but vertex work. */
     use_target(&r->spread0);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
     set_shade_uniforms(r, &r->a0, f, r->spread0.w, r->spread0.h);
-    bind_mesh(r->proxy_vbo, r->proxy_ibo);
-    glDrawElements(GL_TRIANGLES, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0);
+    bind_mesh(r->cap_vbo, r->cap_ibo);
+    glDrawElements(GL_TRIANGLES, (GLsizei)r->capture_proxy.num_indices, GL_UNSIGNED_SHORT, 0);
 
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -638,10 +665,19 @@ static void pass_spread(jd_renderer *r, const frame_params *f)
     if (step < 1.0f) step = 1.0f;
     float st = sigma / step;
     float inv2s2 = 1.0f / (2.0f * st * st);
-    blur(r, &r->spread0, &r->spread_tmp, 1, 0, step, inv2s2);
-    blur(r, &r->spread_tmp, &r->spread1, 0, 1, step, inv2s2);
-    blur(r, &r->spread1, &r->spread_tmp, 1, 0, step, inv2s2);
-    blur(r, &r->spread_tmp, &r->spread2, 0, 1, step, inv2s2);
+    /* A1 = G * A0; A2 = G * A1, whose last (vertical) pass also combines. */
+    blur(r, r->blur_step, r->blur_inv, &r->spread0, &r->spread_tmp, 1, 0, step, inv2s2);
+    blur(r, r->blur_step, r->blur_inv, &r->spread_tmp, &r->spread1, 0, 1, step, inv2s2);
+    blur(r, r->blur_step, r->blur_inv, &r->spread1, &r->spread_tmp, 1, 0, step, inv2s2);
+    glUseProgram(r->combine_prog);
+    glUniform1i(r->comb_src, 0);
+    glUniform1i(r->comb_a1, 1);
+    glUniform3fv(r->comb_w1, 1, f->w1);
+    glUniform3fv(r->comb_w2, 1, f->w2);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, r->spread1.tex);
+    glActiveTexture(GL_TEXTURE0);
+    blur(r, r->comb_step, r->comb_inv, &r->spread_tmp, &r->spread2, 0, 1, step, inv2s2);
 }
 
 static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
@@ -659,13 +695,39 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
     glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
 }
 
-static void lap(const jd_renderer *r, jd_frame_stats *st, int pass, double *t)
+static void gpu_begin(jd_renderer *r, jd_frame_stats *st, int pass)
+{
+    if (r->d.timing && st && r->tq.ok) {
+        r->tq.begin(GL_TIME_ELAPSED_EXT, r->tq.q[pass]);
+        r->tq.used[pass] = 1;
+    }
+}
+
+static void lap(jd_renderer *r, jd_frame_stats *st, int pass, double *t)
 {
     if (!r->d.timing || !st) return;
+    if (r->tq.ok && r->tq.used[pass]) r->tq.end(GL_TIME_ELAPSED_EXT);
     glFinish();
     double now = now_ms();
     st->pass_ms[pass] += now - *t;
     *t = now;
+}
+
+/* After the frame's last glFinish every query is available; a disjoint
+ * event (the GPU clock was disturbed) invalidates the whole frame. */
+static void gpu_collect(jd_renderer *r, jd_frame_stats *st)
+{
+    if (!r->d.timing || !st || !r->tq.ok) return;
+    GLint disjoint = 0;
+    glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
+    st->gpu_valid = !disjoint;
+    for (int p = 0; p < JD_PASS_COUNT; p++) {
+        if (!r->tq.used[p]) continue;
+        GLuint64 ns = 0;
+        r->tq.result64(r->tq.q[p], GL_QUERY_RESULT_EXT, &ns);
+        st->gpu_ms[p] = (double)ns / 1e6;
+        r->tq.used[p] = 0;
+    }
 }
 
 jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *stats, jd_error *err)
@@ -680,20 +742,29 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     glDisable(GL_DITHER);
     if (s->mode != JD_MODE_NONE) {
         update_tail(r, s, &f);
+        gpu_begin(r, stats, JD_PASS_LIGHT_DEPTH);
         pass_light_depth(r, &f);
         lap(r, stats, JD_PASS_LIGHT_DEPTH, &t);
+        gpu_begin(r, stats, JD_PASS_CAPTURE);
         pass_capture(r, &f);
         lap(r, stats, JD_PASS_CAPTURE, &t);
+        gpu_begin(r, stats, JD_PASS_SH);
         jd_result res = pass_sh(r, &f, err);
-        if (res) return res;
+        if (res) {
+            if (r->tq.ok && r->tq.used[JD_PASS_SH]) r->tq.end(GL_TIME_ELAPSED_EXT);
+            return res;
+        }
         lap(r, stats, JD_PASS_SH, &t);
         if (s->mode == JD_MODE_DUAL) {
+            gpu_begin(r, stats, JD_PASS_SPREAD);
             pass_spread(r, &f);
             lap(r, stats, JD_PASS_SPREAD, &t);
         }
     }
+    gpu_begin(r, stats, JD_PASS_MAIN);
     pass_main(r, s, &f);
     lap(r, stats, JD_PASS_MAIN, &t);
+    gpu_collect(r, stats);
     if (stats) {
         memcpy(stats->sh, f.sh.c, sizeof stats->sh);
         stats->blur_sigma_px = f.blur_sigma_px;

@@ -24,10 +24,13 @@ typedef struct jd_renderer_desc {
     int light_map_size;   /* [256] */
     int proxy_cells;      /* [40] vertex-clustering grid of the proxy mesh */
     int capture_cells;    /* [24] coarser proxy for the cube capture */
-    int spread_divisor;   /* [4] spread layers at 1/N resolution */
+    int spread_divisor;   /* [8] spread layers at 1/N resolution */
     jd_precision precision; /* [from the device's fragment highp support] */
     int no_cull;          /* draw back faces too (open meshes) */
     int timing;           /* glFinish after each pass to time it */
+    /* Looks up GL extension entry points (the platform's); with it and
+     * GL_EXT_disjoint_timer_query, timed frames also get GPU pass times. */
+    void *(*get_proc)(const char *name);
 } jd_renderer_desc;
 
 /* What a frame shows. jd_scene_defaults fills a sensible one. */
@@ -53,6 +56,8 @@ const char *jd_pass_name(int pass);
 
 typedef struct jd_frame_stats {
     double pass_ms[JD_PASS_COUNT]; /* CPU wall time per pass (with desc.timing) */
+    double gpu_ms[JD_PASS_COUNT];  /* GPU time per pass, when gpu_valid */
+    int gpu_valid;
     float sh[9][3];                /* coefficients used this frame */
     float blur_sigma_px;           /* spread width in low-res pixels */
 } jd_frame_stats;
@@ -71,6 +76,7 @@ void jd_renderer_set_timing(jd_renderer *r, int on);
 
 size_t jd_renderer_target_bytes(const jd_renderer *r);
 int jd_renderer_highp(const jd_renderer *r);
+int jd_renderer_has_gpu_timer(const jd_renderer *r);
 const jd_mesh *jd_renderer_proxy(const jd_renderer *r);
 /* Reads back the last frame's capture atlas (3N x 2N RGBA8, rows bottom-up)
  * and the 27 packed SH pixels, for tests against the CPU reference. */

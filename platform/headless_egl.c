@@ -152,6 +152,8 @@ void *jd_platform_proc(const jd_platform *p, const char *name)
     return (void *)eglGetProcAddress(name);
 }
 
+void *jd_platform_gl_proc(const char *name) { return (void *)eglGetProcAddress(name); }
+
 jd_result jd_platform_present(jd_platform *p, jd_error *err)
 {
     (void)p;

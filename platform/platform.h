@@ -21,6 +21,8 @@ jd_result jd_platform_present(jd_platform *p, jd_error *err);
 /* Top-down RGBA8 rows of the last frame, w*h*4 bytes into dst. */
 jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err);
 void *jd_platform_proc(const jd_platform *p, const char *name);
+/* The same for the platform that is open, as a plain function for the core. */
+void *jd_platform_gl_proc(const char *name);
 /* One line: which EGL path was taken, e.g. "EGL 1.5 surfaceless (Mesa Project)". */
 const char *jd_platform_describe(const jd_platform *p);
 void jd_platform_close(jd_platform *p);

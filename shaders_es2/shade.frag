@@ -17,12 +17,9 @@ varying vec3 v_light;
 varying vec3 v_trans;
 #endif
 #if JD_SPREAD
-uniform sampler2D u_a1;
-uniform sampler2D u_a2;
+uniform sampler2D u_spread;  // sqrt((w1 A1 + w2 A2) / 2), alpha = covered
 uniform vec2 u_inv_viewport;
 uniform vec3 u_w0;
-uniform vec3 u_w1;
-uniform vec3 u_w2;
 #endif
 
 #if JD_TRANSLUCENT
@@ -55,14 +52,11 @@ void main()
 #if JD_TRANSLUCENT
     vec3 a0 = translucency();
 #if JD_SPREAD
-    vec2 uv = gl_FragCoord.xy * u_inv_viewport;
-    vec4 b1 = texture2D(u_a1, uv);
-    vec4 b2 = texture2D(u_a2, uv);
-    // Normalised convolution: divide by blurred coverage so silhouettes keep
-    // their level instead of fading into the background.
-    vec3 a1 = b1.a > 0.004 ? 2.0 * b1.rgb / b1.a : a0;
-    vec3 a2 = b2.a > 0.004 ? 2.0 * b2.rgb / b2.a : a0;
-    col += u_w0 * a0 + u_w1 * a1 + u_w2 * a2;
+    vec4 sp = texture2D(u_spread, gl_FragCoord.xy * u_inv_viewport);
+    // Where the low-resolution layers did not reach (a silhouette pixel the
+    // proxy missed), A0 stands in for them.
+    vec3 spread = sp.a > 0.5 ? 2.0 * sp.rgb * sp.rgb : (1.0 - u_w0) * a0;
+    col += u_w0 * a0 + spread;
 #else
     col += a0;
 #endif
