@@ -1,8 +1,29 @@
 #include "gl_program.h"
 
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+static const char *dump_dir;
+static int dump_count;
+
+void jd_program_dump_to(const char *dir) { dump_dir = dir; }
+
+static void dump(const char *name, const char *const *parts, int n)
+{
+    char path[512];
+    const char *base = strrchr(name, '/');
+    snprintf(path, sizeof path, "%s/%03d_%s", dump_dir, dump_count++, base ? base + 1 : name);
+    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) return;
+    for (int i = 0; i < n; i++) {
+        size_t len = strlen(parts[i]);
+        if (write(fd, parts[i], len) != (ssize_t)len) break;
+    }
+    close(fd);
+}
 
 const char *jd_shader_text(const char *name)
 {
@@ -58,6 +79,7 @@ static jd_result compile(GLenum type, const char *name, const char *defines, GLu
     }
     parts[n++] = "\n#line 2 0\n";
     parts[n++] = skip_version(text);
+    if (dump_dir) dump(name, parts, n);
     GLuint sh = glCreateShader(type);
     glShaderSource(sh, n, parts, NULL);
     glCompileShader(sh);

@@ -21,4 +21,8 @@ const char *jd_shader_text(const char *name);
 jd_result jd_program_build(const char *vs_name, const char *fs_name, const char *defines,
                            const char *const *attribs, GLuint *out, jd_error *err);
 
+/* Tests: write every assembled shader source to dir (NULL: stop), named
+ * NNN_<file>, exactly as the driver receives it. */
+void jd_program_dump_to(const char *dir);
+
 #endif

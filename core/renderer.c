@@ -13,10 +13,20 @@
 #define SH_BLOCK 8
 #define BLUR_TAPS 4
 
+/* Render targets are power-of-two textures (some ES 2.0 drivers cannot
+ * render to NPOT ones); w x h is the region in use, set by the viewport. */
 typedef struct target {
     GLuint tex, fbo, depth;
-    int w, h;
+    int w, h;   /* used */
+    int tw, th; /* allocated, powers of two */
 } target;
+
+static int pot(int n)
+{
+    int p = 1;
+    while (p < n) p <<= 1;
+    return p;
+}
 
 typedef struct shade_prog {
     GLuint id;
@@ -52,9 +62,9 @@ struct jd_renderer {
     GLuint depth_prog, capture_prog, project_prog, reduce_faces_prog, reduce_final_prog, blur_prog, combine_prog;
     GLint depth_mvp;
     GLint cap_mvp, cap_light_mvp, cap_light_dir, cap_bias, cap_depth, cap_light_color;
-    GLint proj_atlas, rf_src, rf_texel, rl_src, rl_texel;
-    GLint blur_src, blur_step, blur_inv;
-    GLint comb_src, comb_step, comb_inv, comb_a1, comb_w1, comb_w2;
+    GLint proj_atlas, proj_texel, rf_src, rf_texel, rl_src, rl_texel;
+    GLint blur_src, blur_step, blur_inv, blur_scale;
+    GLint comb_src, comb_step, comb_inv, comb_a1, comb_w1, comb_w2, comb_scale;
     target light, atlas, sh1, sh2, sh3, spread0, spread_tmp, spread1, spread2;
     size_t target_bytes;
     float box_half;
@@ -118,11 +128,13 @@ static jd_result make_target(jd_renderer *r, target *t, int w, int h, int with_d
                              const char *what, jd_error *err)
 {
     const jd_gl_caps *c = r->d.caps;
-    if (w > c->max_texture_size || h > c->max_texture_size)
-        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s target %dx%d exceeds the max texture size %d", what, w, h,
-                       c->max_texture_size);
     t->w = w;
     t->h = h;
+    t->tw = pot(w);
+    t->th = pot(h);
+    if (t->tw > c->max_texture_size || t->th > c->max_texture_size)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s target %dx%d exceeds the max texture size %d", what, t->tw,
+                       t->th, c->max_texture_size);
     glGenTextures(1, &t->tex);
     glBindTexture(GL_TEXTURE_2D, t->tex);
     GLint filter = linear ? GL_LINEAR : GL_NEAREST;
@@ -131,17 +143,17 @@ static jd_result make_target(jd_renderer *r, target *t, int w, int h, int with_d
     /* NPOT-safe in core ES 2.0: clamp and no mipmaps. */
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, t->tw, t->th, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
     glGenFramebuffers(1, &t->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
-    r->target_bytes += (size_t)w * h * 4;
+    r->target_bytes += (size_t)t->tw * t->th * 4;
     if (with_depth) {
         glGenRenderbuffers(1, &t->depth);
         glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, w, h);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, t->tw, t->th);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
-        r->target_bytes += (size_t)w * h * 2;
+        r->target_bytes += (size_t)t->tw * t->th * 2;
     }
     GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (st != GL_FRAMEBUFFER_COMPLETE)
@@ -253,6 +265,7 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     if ((res = build("shaders_es2/quad.vert", "shaders_es2/sh_project.frag", def, quad_attribs, &r->project_prog, err)))
         return res;
     r->proj_atlas = glGetUniformLocation(r->project_prog, "u_atlas");
+    r->proj_texel = glGetUniformLocation(r->project_prog, "u_atlas_texel");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, nb, nb);
     if ((res = build("shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_faces_prog, err)))
         return res;
@@ -268,6 +281,7 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     r->blur_src = glGetUniformLocation(r->blur_prog, "u_src");
     r->blur_step = glGetUniformLocation(r->blur_prog, "u_step");
     r->blur_inv = glGetUniformLocation(r->blur_prog, "u_inv_2s2");
+    r->blur_scale = glGetUniformLocation(r->blur_prog, "u_uv_scale");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 1\n", BLUR_TAPS);
     if ((res = build("shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->combine_prog, err)))
         return res;
@@ -277,6 +291,7 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     r->comb_a1 = glGetUniformLocation(r->combine_prog, "u_a1");
     r->comb_w1 = glGetUniformLocation(r->combine_prog, "u_w1");
     r->comb_w2 = glGetUniformLocation(r->combine_prog, "u_w2");
+    r->comb_scale = glGetUniformLocation(r->combine_prog, "u_uv_scale");
     return JD_OK;
 }
 
@@ -575,16 +590,17 @@ static jd_result pass_sh(jd_renderer *r, frame_params *f, jd_error *err)
     glActiveTexture(GL_TEXTURE0);
     glUseProgram(r->project_prog);
     glUniform1i(r->proj_atlas, 0);
+    glUniform2f(r->proj_texel, 1.0f / r->atlas.tw, 1.0f / r->atlas.th);
     glBindTexture(GL_TEXTURE_2D, r->atlas.tex);
     draw_quad_into(r, &r->sh1);
     glUseProgram(r->reduce_faces_prog);
     glUniform1i(r->rf_src, 0);
-    glUniform2f(r->rf_texel, 1.0f / r->sh1.w, 1.0f / r->sh1.h);
+    glUniform2f(r->rf_texel, 1.0f / r->sh1.tw, 1.0f / r->sh1.th);
     glBindTexture(GL_TEXTURE_2D, r->sh1.tex);
     draw_quad_into(r, &r->sh2);
     glUseProgram(r->reduce_final_prog);
     glUniform1i(r->rl_src, 0);
-    glUniform2f(r->rl_texel, 1.0f / r->sh2.w, 1.0f / r->sh2.h);
+    glUniform2f(r->rl_texel, 1.0f / r->sh2.tw, 1.0f / r->sh2.th);
     glBindTexture(GL_TEXTURE_2D, r->sh2.tex);
     draw_quad_into(r, &r->sh3);
     /* 27 pixels come back as uniforms for the per-vertex SH evaluation. */
@@ -624,7 +640,9 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     }
     if (p->spread >= 0) {
         glUniform1i(p->spread, 1);
-        glUniform2f(p->inv_viewport, 1.0f / (float)w, 1.0f / (float)h);
+        /* Screen position to the used corner of the spread texture. */
+        glUniform2f(p->inv_viewport, (float)r->spread2.w / r->spread2.tw / (float)w,
+                    (float)r->spread2.h / r->spread2.th / (float)h);
         glUniform3fv(p->w0, 1, f->w0);
         glActiveTexture(GL_TEXTURE1);
         glBindTexture(GL_TEXTURE_2D, r->spread2.tex);
@@ -636,7 +654,7 @@ static void blur(jd_renderer *r, GLint step_loc, GLint inv_loc, const target *sr
                  float dy, float step, float inv2s2)
 {
     glBindTexture(GL_TEXTURE_2D, src->tex);
-    glUniform2f(step_loc, dx * step / (float)src->w, dy * step / (float)src->h);
+    glUniform2f(step_loc, dx * step / (float)src->tw, dy * step / (float)src->th);
     glUniform1f(inv_loc, inv2s2);
     draw_quad_into(r, dst);
 }
@@ -659,6 +677,7 @@ static void pass_spread(jd_renderer *r, const frame_params *f)
     bind_quad(r);
     glUseProgram(r->blur_prog);
     glUniform1i(r->blur_src, 0);
+    glUniform2f(r->blur_scale, (float)r->spread0.w / r->spread0.tw, (float)r->spread0.h / r->spread0.th);
     glActiveTexture(GL_TEXTURE0);
     float sigma = f->blur_sigma_px;
     float step = sigma * 3.0f / BLUR_TAPS;
@@ -674,6 +693,7 @@ static void pass_spread(jd_renderer *r, const frame_params *f)
     glUniform1i(r->comb_a1, 1);
     glUniform3fv(r->comb_w1, 1, f->w1);
     glUniform3fv(r->comb_w2, 1, f->w2);
+    glUniform2f(r->comb_scale, (float)r->spread0.w / r->spread0.tw, (float)r->spread0.h / r->spread0.th);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, r->spread1.tex);
     glActiveTexture(GL_TEXTURE0);

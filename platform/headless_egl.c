@@ -114,21 +114,26 @@ jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_e
     GLint max_rb = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
     if (p->w > max_rb || p->h > max_rb) {
+        int w = p->w, h = p->h;
         jd_platform_close(p);
-        return jd_fail(err, JD_ERR_UNSUPPORTED, "size %dx%d exceeds this GPU's limit of %d", desc->width,
-                       desc->height, max_rb);
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "size %dx%d exceeds this GPU's limit of %d", w, h, max_rb);
     }
-    /* An RGBA8 texture as colour target: core ES 2.0 has no RGBA8 renderbuffer. */
+    /* An RGBA8 texture as colour target (core ES 2.0 has no RGBA8
+     * renderbuffer), power-of-two sized for drivers without NPOT targets;
+     * frames use the w x h corner. */
+    int tw = 1, th = 1;
+    while (tw < p->w) tw <<= 1;
+    while (th < p->h) th <<= 1;
     glGenTextures(1, &p->color);
     glBindTexture(GL_TEXTURE_2D, p->color);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, p->w, p->h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, tw, th, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
     glGenRenderbuffers(1, &p->depth);
     glBindRenderbuffer(GL_RENDERBUFFER, p->depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, p->w, p->h);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, tw, th);
     glGenFramebuffers(1, &p->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, p->fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, p->color, 0);
@@ -136,7 +141,7 @@ jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_e
     GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (st != GL_FRAMEBUFFER_COMPLETE) {
         jd_platform_close(p);
-        return jd_fail(err, JD_ERR_PLATFORM, "offscreen framebuffer %dx%d incomplete (0x%x)", p->w, p->h, st);
+        return jd_fail(err, JD_ERR_PLATFORM, "offscreen framebuffer %dx%d incomplete (0x%x)", tw, th, st);
     }
     g_open = 1;
     *out = p;

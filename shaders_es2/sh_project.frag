@@ -3,7 +3,8 @@
 // Y = row * NB + block row, row = coefficient * 3 + channel. Each pixel
 // averages L * Y_k * dw over a BxB block of the capture atlas, with dw scaled
 // by 6N^2/(4 pi) so values stay within +-1.5, and packs the mean / 1.5.
-uniform sampler2D u_atlas;     // 3N x 2N, faces +X -X +Y / -Y +Z -Z
+uniform sampler2D u_atlas;     // 3N x 2N used, faces +X -X +Y / -Y +Z -Z
+uniform vec2 u_atlas_texel;    // 1 / the atlas texture's (power-of-two) size
 varying vec2 v_uv;
 // JD_N (face size), JD_B (block), JD_NB = JD_N / JD_B come as defines.
 
@@ -34,7 +35,6 @@ void main()
     vec3 a, u, v;
     face_frame(face, a, u, v);
     vec2 origin = vec2(mod(face, 3.0) * n, floor(face / 3.0) * n) + vec2(bx, by) * float(JD_B);
-    vec2 inv_atlas = vec2(1.0 / (3.0 * n), 1.0 / (2.0 * n));
     float scale = 6.0 / 3.14159265; // 4/N^2 * 6N^2/(4 pi), N folded in below
     float sum = 0.0;
     for (int j = 0; j < JD_B; j++) {
@@ -48,7 +48,7 @@ void main()
             vec4 yb = vec4(1.092548 * w.x * w.y, 1.092548 * w.y * w.z, 0.315392 * (3.0 * w.z * w.z - 1.0), 1.092548 * w.x * w.z);
             float yc = 0.546274 * (w.x * w.x - w.y * w.y);
             float y = dot(ya, ka) + dot(yb, kb) + yc * kc;
-            float l = dot(texture2D(u_atlas, t * inv_atlas).rgb, sel);
+            float l = dot(texture2D(u_atlas, t * u_atlas_texel).rgb, sel);
             // Accumulate the mean directly: a raw sum of B*B terms would lose
             // low bits in fp16.
             sum += l * y * dw / float(JD_B * JD_B);

@@ -8,6 +8,7 @@
 #include "mesh_load.h"
 #include "platform.h"
 #include "renderer.h"
+#include "gl_program.h"
 #include "sh.h"
 
 /* Linked with -Wl,--wrap=malloc,...: every heap call made from the core's
@@ -75,6 +76,7 @@ static void test_sh_reduction(jd_renderer *r, const char *label, double tol)
 int main(int argc, char **argv)
 {
     const char *mesh_path = argc > 1 ? argv[1] : "assets/default.drc";
+    if (argc > 2) jd_program_dump_to(argv[2]); /* for tests/glsl_validate.sh */
     jd_arena a;
     jd_arena_init(&a, mem, sizeof mem);
     jd_error err = {0};
