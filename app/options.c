@@ -47,6 +47,7 @@ static const opt table[] = {
     {"--proxy-cells", T_INT, OFF(rdesc.proxy_cells), 4, 64, R | B, "N          proxy mesh grid [40]"},
     {"--spread-divisor", T_INT, OFF(rdesc.spread_divisor), 1, 16, R | B, "N          spread layers at 1/N resolution [8]"},
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
+    {"--fragment-thickness", T_FLAG, OFF(rdesc.fragment_thickness), 0, 0, R | B, "           thickness per fragment, not per vertex (coarse meshes)"},
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
     {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, R | B, "N          memory budget of the core [8]"},
     {"--decode-timeout-ms", T_INT, OFF(load.timeout_ms), 1, 600000, R | B, "N          refuse a mesh whose decode takes longer [1500]"},

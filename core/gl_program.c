@@ -58,9 +58,9 @@ static const char *skip_version(const char *text)
 }
 
 /* Fragment shaders get a default precision (highp only where the packing
- * asks for it and the device has it) and the packing helpers as source
- * string 1; the shader's own file is string 0, its lines numbered as in the
- * file. */
+ * asks for it and the device has it); every shader gets the packing helpers
+ * as source string 1; the shader's own file is string 0, its lines numbered
+ * as in the file. */
 static jd_result compile(GLenum type, const char *name, const char *defines, GLuint *out,
                          jd_error *err)
 {
@@ -71,12 +71,13 @@ static jd_result compile(GLenum type, const char *name, const char *defines, GLu
     int n = 0;
     parts[n++] = "#version 100\n";
     parts[n++] = defines ? defines : "";
-    if (type == GL_FRAGMENT_SHADER) {
+    if (type == GL_FRAGMENT_SHADER)
         parts[n++] = "#if JD_PACK_HIGHP\nprecision highp float;\nprecision highp sampler2D;\n#else\n"
                      "precision mediump float;\nprecision mediump sampler2D;\n#endif\n"
                      "#line 1 1\n";
-        parts[n++] = pack;
-    }
+    else
+        parts[n++] = "precision highp sampler2D;\n#line 1 1\n";
+    parts[n++] = pack;
     parts[n++] = "\n#line 2 0\n";
     parts[n++] = skip_version(text);
     if (dump_dir) dump(name, parts, n);

@@ -31,7 +31,7 @@ static int pot(int n)
 typedef struct shade_prog {
     GLuint id;
     GLint mvp, light_mvp, eye, sh, box_min, box_max, inv_eta, inset;
-    GLint light_dir, albedo, light_color, shading, depth, tail, f0, a0_scale;
+    GLint light_dir, albedo, light_color, shading, depth, tail, depth_v, tail_v, f0, a0_scale;
     GLint spread, inv_viewport, w0;
 } shade_prog;
 
@@ -51,6 +51,7 @@ typedef struct timer_query {
 struct jd_renderer {
     jd_renderer_desc d;
     int highp;
+    int vertex_thickness; /* thickness read in the vertex stage */
     jd_mesh proxy, capture_proxy;
     GLuint mesh_vbo, mesh_ibo, proxy_vbo, proxy_ibo, cap_vbo, cap_ibo, quad_vbo;
     GLuint tail_tex;
@@ -223,6 +224,8 @@ static void shade_locations(shade_prog *p)
     p->shading = glGetUniformLocation(id, "u_shading");
     p->depth = glGetUniformLocation(id, "u_depth");
     p->tail = glGetUniformLocation(id, "u_tail");
+    p->depth_v = glGetUniformLocation(id, "u_depth_v");
+    p->tail_v = glGetUniformLocation(id, "u_tail_v");
     p->f0 = glGetUniformLocation(id, "u_f0");
     p->a0_scale = glGetUniformLocation(id, "u_a0_scale");
     p->spread = glGetUniformLocation(id, "u_spread");
@@ -237,14 +240,17 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     jd_result res;
     for (int m = 0; m < JD_MODE_COUNT; m++) {
         snprintf(def, sizeof def,
-                 "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n",
-                 r->highp, m != JD_MODE_NONE, m == JD_MODE_DUAL);
+                 "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
+                 "#define JD_VERTEX_THICKNESS %d\n",
+                 r->highp, m != JD_MODE_NONE, m == JD_MODE_DUAL, r->vertex_thickness);
         if ((res = build("shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->shade[m].id, err)))
             return res;
         shade_locations(&r->shade[m]);
     }
     snprintf(def, sizeof def,
-             "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n", r->highp);
+             "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n"
+             "#define JD_VERTEX_THICKNESS %d\n",
+             r->highp, r->vertex_thickness);
     if ((res = build("shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->a0.id, err))) return res;
     shade_locations(&r->a0);
 
@@ -320,6 +326,9 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     if (d->precision == JD_PRECISION_HIGHP && !device_highp)
         return jd_fail(err, JD_ERR_UNSUPPORTED, "highp packing asked for, but this GPU has no fragment highp");
     r->highp = d->precision == JD_PRECISION_AUTO ? device_highp : d->precision == JD_PRECISION_HIGHP;
+    /* Two vertex texture units (depth map and tail table) move A0 to the
+     * vertex stage; none (Mali-400) keeps it per fragment. */
+    r->vertex_thickness = !d->fragment_thickness && d->caps->max_vertex_texture_units >= 2;
 
     if (d->mesh->index_size == 4 && !d->caps->ext_element_index_uint)
         return jd_fail(err, JD_ERR_UNSUPPORTED, "mesh needs 32-bit indices but OES_element_index_uint is missing");
@@ -408,6 +417,7 @@ size_t jd_renderer_target_bytes(const jd_renderer *r) { return r->target_bytes; 
 void jd_renderer_finish(jd_renderer *r) { (void)r; glFinish(); }
 void jd_renderer_set_timing(jd_renderer *r, int on) { r->d.timing = on; }
 int jd_renderer_highp(const jd_renderer *r) { return r->highp; }
+int jd_renderer_vertex_thickness(const jd_renderer *r) { return r->vertex_thickness; }
 int jd_renderer_has_gpu_timer(const jd_renderer *r) { return r->tq.ok; }
 const jd_mesh *jd_renderer_proxy(const jd_renderer *r) { return &r->proxy; }
 
@@ -631,8 +641,8 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         glUniform1f(p->inset, f->inset);
         glUniform3fv(p->a0_scale, 1, f->a0_scale);
         glUniform1f(p->f0, f->f0);
-        glUniform1i(p->depth, 0);
-        glUniform1i(p->tail, 3);
+        glUniform1i(p->depth >= 0 ? p->depth : p->depth_v, 0);
+        glUniform1i(p->tail >= 0 ? p->tail : p->tail_v, 3);
         glActiveTexture(GL_TEXTURE3);
         glBindTexture(GL_TEXTURE_2D, r->tail_tex);
         glActiveTexture(GL_TEXTURE0);

@@ -27,6 +27,8 @@ typedef struct jd_renderer_desc {
     int spread_divisor;   /* [8] spread layers at 1/N resolution */
     jd_precision precision; /* [from the device's fragment highp support] */
     int no_cull;          /* draw back faces too (open meshes) */
+    int fragment_thickness; /* read thickness per fragment even where the
+                               vertex stage could (coarse meshes) */
     int timing;           /* glFinish after each pass to time it */
     /* Looks up GL extension entry points (the platform's); with it and
      * GL_EXT_disjoint_timer_query, timed frames also get GPU pass times. */
@@ -76,6 +78,7 @@ void jd_renderer_set_timing(jd_renderer *r, int on);
 
 size_t jd_renderer_target_bytes(const jd_renderer *r);
 int jd_renderer_highp(const jd_renderer *r);
+int jd_renderer_vertex_thickness(const jd_renderer *r);
 int jd_renderer_has_gpu_timer(const jd_renderer *r);
 const jd_mesh *jd_renderer_proxy(const jd_renderer *r);
 /* Reads back the last frame's capture atlas (3N x 2N RGBA8, rows bottom-up)

@@ -18,8 +18,17 @@ uniform float u_inv_eta;
 uniform float u_inset;
 uniform float u_f0;          // Schlick reflectance at normal incidence
 uniform vec3 u_a0_scale;     // K (1-Fdr)/pi alpha'/2, per channel
+#if JD_VERTEX_THICKNESS
+// Where the GPU can fetch textures in the vertex stage, the thickness and
+// its dipole tail are read per vertex: the fragment stage then has no
+// texture to fetch for A0. (Mali-400 has no vertex texture units: there the
+// fragment stage does it.)
+uniform sampler2D u_depth_v;
+uniform sampler2D u_tail_v;
+#else
 varying vec3 v_light;
-varying vec3 v_trans;        // everything of A0 but the thickness term
+#endif
+varying vec3 v_trans;        // A0 but the thickness term (all of A0 per vertex)
 
 vec3 sh_irradiance(vec3 n)
 {
@@ -43,7 +52,7 @@ void main()
     // Thickness is read at a point moved inward, so the surface does not
     // measure itself.
     vec4 lp = u_light_mvp * vec4(a_position - u_inset * n, 1.0);
-    v_light = lp.xyz * 0.5 + 0.5;
+    vec3 light = lp.xyz * 0.5 + 0.5;
     vec3 r = refract(-view, n, u_inv_eta);
     if (dot(r, r) < 1e-6) r = -n;
     // Box projection: where the refracted ray leaves the bounding cube, seen
@@ -61,5 +70,12 @@ void main()
     float x2 = x * x;
     float ft = 1.0 - (u_f0 + (1.0 - u_f0) * x2 * x2 * x); // Fresnel transmittance
     v_trans = ft * u_a0_scale * max(sh_irradiance(d), vec3(0.0));
+#if JD_VERTEX_THICKNESS
+    float t = clamp(light.z - jd_unpack(texture2DLod(u_depth_v, light.xy, 0.0)), 0.0, 1.0);
+    vec3 m = texture2DLod(u_tail_v, vec2(t, 0.5), 0.0).rgb;
+    v_trans *= 2.0 * m * m;
+#else
+    v_light = light;
+#endif
 #endif
 }

@@ -11,9 +11,11 @@ uniform vec4 u_shading;      // ambient, specular, shininess, exposure
 varying vec3 v_pos;
 varying vec3 v_normal;
 #if JD_TRANSLUCENT
+#if !JD_VERTEX_THICKNESS
 uniform sampler2D u_depth;
 uniform sampler2D u_tail;    // sqrt of the dipole tail M(t)/M-scale, t across [0, range]
 varying vec3 v_light;
+#endif
 varying vec3 v_trans;
 #endif
 #if JD_SPREAD
@@ -28,10 +30,14 @@ uniform vec3 u_w0;
 // more than the rest of the shader on small GPUs).
 vec3 translucency()
 {
+#if JD_VERTEX_THICKNESS
+    return v_trans;
+#else
     float shadow = jd_unpack(texture2D(u_depth, v_light.xy));
     float t = clamp(v_light.z - shadow, 0.0, 1.0);
     vec3 m = texture2D(u_tail, vec2(t, 0.5)).rgb;
     return 2.0 * m * m * v_trans;
+#endif
 }
 #endif
 

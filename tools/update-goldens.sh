@@ -8,7 +8,8 @@ sh tests/encode_bunny.sh ../shared build/testdata/bunny.drc
 for mode in none single dual; do
     for mat in marble skin1 ketchup; do
         ./build/jade render --mesh build/testdata/bunny.drc --out "tests/golden/bunny_${mode}_${mat}.png" \
-            --size 256x256 --mode "$mode" --material "$mat" --cam-azimuth 20 --precision highp >/dev/null
+            --size 256x256 --mode "$mode" --material "$mat" --cam-azimuth 20 --precision highp \
+            --fragment-thickness >/dev/null
     done
 done
 ls -la tests/golden
