@@ -88,15 +88,12 @@ int jd_cmd_bench(int argc, char **argv)
     jd_options o;
     jd_options_defaults(&o);
     o.mode_list = "all";
-    int p = jd_options_parse(&o, JD_OPT_BENCH, "bench", argc, argv, 2);
-    if (p < 0) {
-        jd_options_help(JD_OPT_BENCH, "bench",
-                        "Renders N frames per mode with the light orbiting and prints one JSON object.\n"
-                        "Frame times: glFinish at the end of each frame. Pass times: a separate run of\n"
-                        "up to 60 frames with glFinish after each pass.");
-        return 0;
-    }
-    if (!p || !jd_options_finish(&o, "bench")) return 2;
+    int rc = jd_options_command(&o, JD_OPT_BENCH, "bench",
+                                "Renders N frames per mode with the light orbiting and prints one JSON object.\n"
+                                "Frame times: glFinish at the end of each frame. Pass times: a separate run of\n"
+                                "up to 60 frames with glFinish after each pass.",
+                                argc, argv);
+    if (rc >= 0) return rc;
     if (!o.frames) o.frames = 200;
 
     jd_session s;

@@ -10,19 +10,15 @@ int jd_cmd_render(int argc, char **argv)
     jd_options o;
     jd_options_defaults(&o);
     o.out = "jade.png";
-    int p = jd_options_parse(&o, JD_OPT_RENDER, "render", argc, argv, 2);
-    if (p < 0) {
-        jd_options_help(JD_OPT_RENDER, "render",
-                        "Renders a Draco mesh in translucent material, headless, to a PNG.");
-        return 0;
-    }
-    if (!p || !jd_options_finish(&o, "render")) return 2;
+    int rc = jd_options_command(&o, JD_OPT_RENDER, "render",
+                                "Renders a Draco mesh in translucent material, headless, to a PNG.", argc, argv);
+    if (rc >= 0) return rc;
     if (!o.frames) o.frames = 1;
 
     jd_session s;
     if (!jd_session_open(&s, &o, "render")) { jd_session_close(&s); return 1; }
     jd_error err = {0};
-    int rc = 0;
+    rc = 0;
     uint8_t *px = jd_arena_alloc(&s.arena, (size_t)o.width * o.height * 4, 16, "the output image", &err);
     if (!px) {
         fprintf(stderr, "jade render: %s\n", err.msg);

@@ -199,3 +199,14 @@ int jd_options_finish(jd_options *o, const char *cmd)
     }
     return 1;
 }
+
+int jd_options_command(jd_options *o, int command, const char *cmd, const char *summary, int argc, char **argv)
+{
+    int p = jd_options_parse(o, command, cmd, argc, argv, 2);
+    if (p < 0) {
+        jd_options_help(command, cmd, summary);
+        return 0;
+    }
+    if (!p || !jd_options_finish(o, cmd)) return 2;
+    return -1;
+}

@@ -31,5 +31,8 @@ int jd_options_parse(jd_options *o, int command, const char *cmdname, int argc, 
 void jd_options_help(int command, const char *cmdname, const char *summary);
 /* Applies --material and explicit coefficients to the scene. */
 int jd_options_finish(jd_options *o, const char *cmdname);
+/* Parse, help and finish in one: returns -1 to go on, else the exit code. */
+int jd_options_command(jd_options *o, int command, const char *cmdname, const char *summary, int argc,
+                       char **argv);
 
 #endif

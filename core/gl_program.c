@@ -50,6 +50,16 @@ static void log_location(const char *log, int *string, int *line)
         }
 }
 
+/* The driver's log as one line, so every error stays one line. */
+static void one_line_log(GLuint obj, int is_program, char *log, int cap)
+{
+    log[0] = 0;
+    if (is_program) glGetProgramInfoLog(obj, cap, NULL, log);
+    else glGetShaderInfoLog(obj, cap, NULL, log);
+    for (char *p = log; *p; p++)
+        if (*p == '\n' || *p == '\r') *p = ' ';
+}
+
 static const char *skip_version(const char *text)
 {
     if (strncmp(text, "#version", 8) != 0) return text;
@@ -87,10 +97,8 @@ static jd_result compile(GLenum type, const char *name, const char *defines, GLu
     GLint ok = 0;
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        char log[1024] = "";
-        glGetShaderInfoLog(sh, sizeof log, NULL, log);
-        for (char *p = log; *p; p++)
-            if (*p == '\n') *p = ' ';
+        char log[1024];
+        one_line_log(sh, 0, log, sizeof log);
         glDeleteShader(sh);
         int string, line;
         log_location(log, &string, &line);
@@ -119,10 +127,8 @@ jd_result jd_program_build(const char *vs_name, const char *fs_name, const char 
     GLint ok = 0;
     glGetProgramiv(p, GL_LINK_STATUS, &ok);
     if (!ok) {
-        char log[1024] = "";
-        glGetProgramInfoLog(p, sizeof log, NULL, log);
-        for (char *q = log; *q; q++)
-            if (*q == '\n') *q = ' ';
+        char log[1024];
+        one_line_log(p, 1, log, sizeof log);
         glDeleteProgram(p);
         return jd_fail(err, JD_ERR_GL, "%s + %s: program does not link: %s", vs_name, fs_name, log);
     }

@@ -125,6 +125,20 @@ static double now_ms(void)
 
 /* ---- start-up ---------------------------------------------------------- */
 
+/* An RGBA8 texture, clamped and without mipmaps: NPOT-safe in core ES 2.0. */
+static GLuint new_texture(int w, int h, GLint filter)
+{
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    return tex;
+}
+
 static jd_result make_target(jd_renderer *r, target *t, int w, int h, int with_depth, int linear,
                              const char *what, jd_error *err)
 {
@@ -136,15 +150,7 @@ static jd_result make_target(jd_renderer *r, target *t, int w, int h, int with_d
     if (t->tw > c->max_texture_size || t->th > c->max_texture_size)
         return jd_fail(err, JD_ERR_UNSUPPORTED, "%s target %dx%d exceeds the max texture size %d", what, t->tw,
                        t->th, c->max_texture_size);
-    glGenTextures(1, &t->tex);
-    glBindTexture(GL_TEXTURE_2D, t->tex);
-    GLint filter = linear ? GL_LINEAR : GL_NEAREST;
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-    /* NPOT-safe in core ES 2.0: clamp and no mipmaps. */
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, t->tw, t->th, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    t->tex = new_texture(t->tw, t->th, linear ? GL_LINEAR : GL_NEAREST);
     glGenFramebuffers(1, &t->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
@@ -349,13 +355,7 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     if ((res = upload_mesh(m, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err))) return res;
     if ((res = upload_mesh(&r->proxy, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a, err))) return res;
     if ((res = upload_mesh(&r->capture_proxy, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a, err))) return res;
-    glGenTextures(1, &r->tail_tex);
-    glBindTexture(GL_TEXTURE_2D, r->tail_tex);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, TAIL_SIZE, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    r->tail_tex = new_texture(TAIL_SIZE, 1, GL_LINEAR);
     r->target_bytes += TAIL_SIZE * 4;
     r->tail_key[0] = -1.0f; /* no table yet */
     r->mesh_index_type = m->index_size == 2 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
