@@ -534,10 +534,12 @@ static void bind_quad(const jd_renderer *r)
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 8, (const void *)0);
 }
 
+/* The scissor keeps clears to the used corner of a power-of-two target. */
 static void use_target(const target *t)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
     glViewport(0, 0, t->w, t->h);
+    glScissor(0, 0, t->w, t->h);
 }
 
 static void pass_light_depth(jd_renderer *r, const frame_params *f)
@@ -558,8 +560,7 @@ static void pass_capture(jd_renderer *r, const frame_params *f)
 {
     int n = r->d.cube_size;
     float h = r->box_half;
-    glBindFramebuffer(GL_FRAMEBUFFER, r->atlas.fbo);
-    glViewport(0, 0, r->atlas.w, r->atlas.h);
+    use_target(&r->atlas);
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
@@ -714,6 +715,7 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
+    glScissor(0, 0, r->d.width, r->d.height);
     float bg[3];
     for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f)); /* display gamma 2, as the shader */
     glClearColor(bg[0], bg[1], bg[2], 1);
@@ -770,6 +772,7 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     double t = now_ms();
     /* Packed values must reach RGBA8 bit-exact: GL enables dithering by default. */
     glDisable(GL_DITHER);
+    glEnable(GL_SCISSOR_TEST);
     if (s->mode != JD_MODE_NONE) {
         update_tail(r, s, &f);
         gpu_begin(r, stats, JD_PASS_LIGHT_DEPTH);
