@@ -1,0 +1,26 @@
+#!/bin/sh
+# Installs jade into a temporary prefix and builds a small consumer against
+# it twice: with find_package(jade) (static libjade) and with pkg-config
+# (shared libjade.so). Both must render.
+set -u
+build=$1 src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0 fail=0
+cmake --install "$build" --prefix "$tmp/prefix" >/dev/null || { echo "install failed"; echo "consumer: 0 passed, 1 failed"; exit 1; }
+mesh="$tmp/prefix/share/jade/default.drc"
+if cmake -S "$src/consumer" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$tmp/prefix" >"$tmp/log" 2>&1 &&
+   cmake --build "$tmp/cm" >>"$tmp/log" 2>&1 && "$tmp/cm/consumer" "$mesh"; then
+    pass=$((pass + 1)); echo "ok   find_package(jade), static libjade"
+else
+    fail=$((fail + 1)); echo "FAIL find_package(jade)"; tail -20 "$tmp/log"
+fi
+export PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig"
+if cc -o "$tmp/consumer_pc" "$src/consumer/consumer.c" $(pkg-config --cflags --libs jade-platform) >"$tmp/log" 2>&1 &&
+   LD_LIBRARY_PATH="$tmp/prefix/lib" "$tmp/consumer_pc" "$mesh" && ldd "$tmp/consumer_pc" | grep -q 'libjade.so.0 =>'; then
+    pass=$((pass + 1)); echo "ok   pkg-config jade-platform, shared libjade.so.0"
+else
+    fail=$((fail + 1)); echo "FAIL pkg-config"; cat "$tmp/log"
+fi
+echo "consumer: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,45 @@
+#!/bin/sh
+# Cross-builds jade for aarch64 and armhf with the toolchain files and runs
+# the GL-free tests (units, the Draco reference comparison, hostile inputs)
+# under qemu-user. --sizes also reports the stripped size of the aarch64
+# program with Draco linked dynamically and statically.
+set -eu
+cd "$(dirname "$0")/.."
+./tools/setup-cross.sh
+jobs=$(nproc)
+for triple in aarch64-linux-gnu arm-linux-gnueabihf; do
+    dir=build-$triple
+    echo "== $triple"
+    cmake -S . -B "$dir" -DCMAKE_TOOLCHAIN_FILE="toolchains/$triple.cmake" -DCMAKE_BUILD_TYPE=Release >/dev/null
+    cmake --build "$dir" -j"$jobs" >/dev/null
+    file "$dir/jade" | sed 's/, BuildID.*//'
+    (cd "$dir" && ctest --output-on-failure -R '^(units|draco_reference|bad_inputs)$')
+done
+# The board-sysroot path: a sysroot made only of Debian's arm64 packages
+# (what a Raspberry Pi OS image holds), no multiarch involved.
+sysroot=${JADE_TEST_SYSROOT:-/tmp/jade-sysroot-arm64}
+if [ ! -f "$sysroot/usr/lib/aarch64-linux-gnu/pkgconfig/draco.pc" ]; then
+    mkdir -p "$sysroot.debs"
+    (cd "$sysroot.debs" && apt-get download $(for p in libc6 libc6-dev linux-libc-dev libgcc-s1 libgcc-12-dev \
+        libstdc++6 libstdc++-12-dev libdraco7 libdraco-dev libegl1 libegl-dev libglvnd0 libgles2 libgles1 \
+        libgles-dev libgl-dev libgl1 libglx0 libglx-dev libopengl0 libx11-dev libx11-6 libxcb1 libxau6 \
+        libxdmcp6 libbsd0 libmd0 libstb0 libstb-dev; do echo "$p:arm64"; done) x11proto-dev >/dev/null 2>&1)
+    for f in "$sysroot.debs"/*.deb; do dpkg -x "$f" "$sysroot"; done
+fi
+echo "== aarch64-linux-gnu with the sysroot $sysroot"
+cmake -S . -B build-aarch64-sysroot -DCMAKE_TOOLCHAIN_FILE=toolchains/aarch64-linux-gnu.cmake -DJADE_SYSROOT="$sysroot" \
+    -DCMAKE_BUILD_TYPE=Release >/dev/null
+grep -q "DRACO_LIBRARY_DIRS:INTERNAL=$sysroot" build-aarch64-sysroot/CMakeCache.txt ||
+    { echo "pkg-config did not resolve Draco inside the sysroot"; exit 1; }
+cmake --build build-aarch64-sysroot -j"$jobs" >/dev/null
+(cd build-aarch64-sysroot && ctest --output-on-failure -R '^(units|bad_inputs)$')
+
+if [ "${1:-}" = "--sizes" ]; then
+    cmake -S . -B build-aarch64-static -DCMAKE_TOOLCHAIN_FILE=toolchains/aarch64-linux-gnu.cmake \
+        -DCMAKE_BUILD_TYPE=Release -DJADE_STATIC_DRACO=ON -DJADE_TESTS=OFF >/dev/null
+    cmake --build build-aarch64-static -j"$jobs" >/dev/null
+    for d in build-aarch64-linux-gnu build-aarch64-static; do
+        aarch64-linux-gnu-strip -o "$d/jade.stripped" "$d/jade"
+        echo "$d/jade stripped: $(wc -c < "$d/jade.stripped") bytes; needs: $(aarch64-linux-gnu-readelf -d "$d/jade" | grep NEEDED | sed 's/.*\[\(.*\)\]/\1/' | tr '\n' ' ')"
+    done
+fi
