@@ -9,14 +9,18 @@ trap 'rm -rf "$tmp"' EXIT
 pass=0 fail=0
 cmake --install "$build" --prefix "$tmp/prefix" >/dev/null || { echo "install failed"; echo "consumer: 0 passed, 1 failed"; exit 1; }
 mesh="$tmp/prefix/share/jade/default.drc"
-if cmake -S "$src/consumer" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$tmp/prefix" >"$tmp/log" 2>&1 &&
+# A sanitizer build's libraries need the sanitizer runtimes in the consumer.
+san=""
+grep -q '^JADE_SANITIZE:BOOL=ON' "$build/CMakeCache.txt" && san="-fsanitize=address,undefined"
+if cmake -S "$src/consumer" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_C_FLAGS="$san" \
+       -DCMAKE_EXE_LINKER_FLAGS="$san" >"$tmp/log" 2>&1 &&
    cmake --build "$tmp/cm" >>"$tmp/log" 2>&1 && "$tmp/cm/consumer" "$mesh"; then
     pass=$((pass + 1)); echo "ok   find_package(jade), static libjade"
 else
     fail=$((fail + 1)); echo "FAIL find_package(jade)"; tail -20 "$tmp/log"
 fi
 export PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig"
-if cc -o "$tmp/consumer_pc" "$src/consumer/consumer.c" $(pkg-config --cflags --libs jade-platform) >"$tmp/log" 2>&1 &&
+if cc $san -o "$tmp/consumer_pc" "$src/consumer/consumer.c" $(pkg-config --cflags --libs jade-platform) >"$tmp/log" 2>&1 &&
    LD_LIBRARY_PATH="$tmp/prefix/lib" "$tmp/consumer_pc" "$mesh" && ldd "$tmp/consumer_pc" | grep -q 'libjade.so.0 =>'; then
     pass=$((pass + 1)); echo "ok   pkg-config jade-platform, shared libjade.so.0"
 else
