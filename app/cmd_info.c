@@ -4,13 +4,30 @@
 #include "commands.h"
 #include "gl_caps.h"
 #include "platform.h"
+#include "profile.h"
 
 int jd_cmd_info(int argc, char **argv)
 {
+    const jd_profile *prof = NULL;
     for (int i = 2; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: jade info\nPrints the GL device's limits and the extensions jade can use.\n");
+            printf("usage: jade info [--profile NAME]\nPrints the GL device's limits and the extensions jade can use;\n"
+                   "with --profile, the limits jade enforces when emulating that device:\n");
+            for (int k = 0; k < jd_profile_count; k++)
+                printf("  %-9s %s\n", jd_profiles[k].name, jd_profiles[k].summary);
             return 0;
+        }
+        if (!strcmp(argv[i], "--profile")) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "jade info: --profile needs a value (see jade info --help)\n");
+                return 2;
+            }
+            prof = jd_profile_find(argv[++i]);
+            if (!prof) {
+                fprintf(stderr, "jade info: --profile: unknown profile '%s' (have: generic, vc4, mali400)\n", argv[i]);
+                return 2;
+            }
+            continue;
         }
         fprintf(stderr, "jade info: unknown option '%s' (see jade info --help)\n", argv[i]);
         return 2;
@@ -28,6 +45,11 @@ int jd_cmd_info(int argc, char **argv)
         jd_platform_close(p);
         return 1;
     }
+    if (prof) {
+        jd_profile_apply(prof, &c);
+        printf("profile            %s: %s\n                   (%s)\n", prof->name, prof->summary, prof->source);
+        printf("                   the limits below are the device's, lowered to the profile's\n");
+    }
     printf("platform           %s\n", jd_platform_describe(p));
     printf("GL_VENDOR          %s\nGL_RENDERER        %s\nGL_VERSION         %s\nGLSL               %s\n", c.vendor,
            c.renderer, c.version, c.glsl);
@@ -39,7 +61,8 @@ int jd_cmd_info(int argc, char **argv)
     printf("fragment highp     %s (precision %d bits, range 2^%d)\n", c.frag_highp_precision >= 23 ? "yes" : "no",
            c.frag_highp_precision, c.frag_highp_range);
     printf("fragment mediump   precision %d bits, range 2^%d\n", c.frag_mediump_precision, c.frag_mediump_range);
-    printf("SH packing         %s\n", c.frag_highp_precision >= 23 ? "highp (3 bytes)" : "mediump (2 bytes)");
+    printf("SH packing         %s\n", c.frag_highp_precision >= 23 ? "highp (3 bytes)" : "mediump (2 x 2 bytes)");
+    printf("thickness read     %s\n", c.max_vertex_texture_units >= 2 ? "per vertex" : "per fragment (no vertex texture units)");
     printf("extensions (%d), those jade can use:\n", c.num_extensions);
     printf("  OES_element_index_uint      %s (meshes over 65,536 vertices)\n", c.ext_element_index_uint ? "yes" : "no");
     printf("  EXT_disjoint_timer_query    %s (GPU pass timings in bench)\n", c.ext_disjoint_timer_query ? "yes" : "no");

@@ -1,5 +1,7 @@
 #include "options.h"
 
+#include "profile.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -46,6 +48,7 @@ static const opt table[] = {
     {"--light-map", T_INT, OFF(rdesc.light_map_size), 16, 2048, R | B, "N          light depth map size [256]"},
     {"--proxy-cells", T_INT, OFF(rdesc.proxy_cells), 4, 64, R | B, "N          proxy mesh grid [40]"},
     {"--spread-divisor", T_INT, OFF(rdesc.spread_divisor), 1, 16, R | B, "N          spread layers at 1/N resolution [8]"},
+    {"--profile", T_STR, OFF(profile), 0, 0, R | B | JD_OPT_INFO, "NAME       emulate a device's limits: generic, vc4, mali400"},
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
     {"--fragment-thickness", T_FLAG, OFF(rdesc.fragment_thickness), 0, 0, R | B, "           thickness per fragment, not per vertex (coarse meshes)"},
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
@@ -188,6 +191,10 @@ int jd_options_finish(jd_options *o, const char *cmd)
     const jd_material *m = jd_material_find(o->material);
     if (!m) {
         fprintf(stderr, "jade %s: --material: unknown material '%s' (see jade %s --help)\n", cmd, o->material, cmd);
+        return 0;
+    }
+    if (o->profile && !jd_profile_find(o->profile)) {
+        fprintf(stderr, "jade %s: --profile: unknown profile '%s' (have: generic, vc4, mali400)\n", cmd, o->profile);
         return 0;
     }
     if (!o->has_sigma_s) memcpy(o->scene.sigma_s, m->sigma_s, sizeof m->sigma_s);

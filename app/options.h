@@ -12,6 +12,7 @@ typedef struct jd_options {
     const char *sheet;
     const char *material;
     const char *mode_list;    /* bench: "all" or one mode */
+    const char *profile;      /* device profile to emulate, or NULL */
     int width, height;
     int frames;
     int budget_mb;

@@ -1,5 +1,7 @@
 #include "session.h"
 
+#include "profile.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,6 +76,7 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
         fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
         return 0;
     }
+    if (o->profile) jd_profile_apply(jd_profile_find(o->profile), &s->caps);
     jd_renderer_desc rd = o->rdesc;
     rd.mesh = &s->mesh;
     rd.caps = &s->caps;

@@ -17,6 +17,7 @@ typedef struct jd_gl_caps {
         ext_texture_float, ext_packed_depth_stencil, ext_rgb8_rgba8, ext_texture_npot,
         ext_standard_derivatives;
     int num_extensions;
+    char profile[16]; /* the device profile applied, or empty */
 } jd_gl_caps;
 
 /* proc returns GL entry points by name (from the platform); may be NULL. */

@@ -19,6 +19,7 @@ extern "C" {
 #include "mesh_load.h"
 #include "material.h"
 #include "gl_caps.h"
+#include "profile.h"
 #include "renderer.h"
 
 #ifdef __cplusplus

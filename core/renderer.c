@@ -207,10 +207,37 @@ static jd_result upload_mesh(const jd_mesh *m, jd_vec3 c, float inv_r, GLuint *v
 static const char *const mesh_attribs[] = {"a_position", "a_normal", NULL};
 static const char *const quad_attribs[] = {"a_corner", NULL};
 
-static jd_result build(const char *vs, const char *fs, const char *defines, const char *const *attribs,
-                       GLuint *out, jd_error *err)
+/* The device's (or the profile's) limits hold for every program: uniform
+ * vectors (GLSL ES packing: a matN takes N) and samplers. Checked here so a
+ * desktop with a board's profile fails where the board would. */
+static jd_result check_limits(const jd_gl_caps *c, GLuint prog, const char *vs, const char *fs, jd_error *err)
 {
-    return jd_program_build(vs, fs, defines, attribs, out, err);
+    GLint n = 0;
+    glGetProgramiv(prog, GL_ACTIVE_UNIFORMS, &n);
+    int vectors = 0, samplers = 0;
+    for (GLint i = 0; i < n; i++) {
+        char name[64];
+        GLint size = 0;
+        GLenum type = 0;
+        glGetActiveUniform(prog, (GLuint)i, sizeof name, NULL, &size, &type, name);
+        if (type == GL_SAMPLER_2D || type == GL_SAMPLER_CUBE) samplers += size;
+        else vectors += size * (type == GL_FLOAT_MAT4 ? 4 : type == GL_FLOAT_MAT3 ? 3 : type == GL_FLOAT_MAT2 ? 2 : 1);
+    }
+    if (vectors > c->max_vertex_uniform_vectors)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s + %s: %d uniform vectors, over this device's %d", vs, fs, vectors,
+                       c->max_vertex_uniform_vectors);
+    if (samplers > c->max_texture_units)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s + %s: %d samplers, over this device's %d texture units", vs, fs,
+                       samplers, c->max_texture_units);
+    return JD_OK;
+}
+
+static jd_result build(const jd_renderer *r, const char *vs, const char *fs, const char *defines,
+                       const char *const *attribs, GLuint *out, jd_error *err)
+{
+    jd_result res = jd_program_build(vs, fs, defines, attribs, out, err);
+    if (res == JD_OK) res = check_limits(r->d.caps, *out, vs, fs, err);
+    return res;
 }
 
 static void shade_locations(shade_prog *p)
@@ -249,7 +276,7 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
                  "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
                  "#define JD_VERTEX_THICKNESS %d\n",
                  r->highp, m != JD_MODE_NONE, m == JD_MODE_DUAL, r->vertex_thickness);
-        if ((res = build("shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->shade[m].id, err)))
+        if ((res = build(r, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->shade[m].id, err)))
             return res;
         shade_locations(&r->shade[m]);
     }
@@ -257,13 +284,13 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n"
              "#define JD_VERTEX_THICKNESS %d\n",
              r->highp, r->vertex_thickness);
-    if ((res = build("shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->a0.id, err))) return res;
+    if ((res = build(r, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->a0.id, err))) return res;
     shade_locations(&r->a0);
 
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n", r->highp);
-    if ((res = build("shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err))) return res;
+    if ((res = build(r, "shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err))) return res;
     r->depth_mvp = glGetUniformLocation(r->depth_prog, "u_light_mvp");
-    if ((res = build("shaders_es2/capture.vert", "shaders_es2/capture.frag", def, mesh_attribs, &r->capture_prog, err)))
+    if ((res = build(r, "shaders_es2/capture.vert", "shaders_es2/capture.frag", def, mesh_attribs, &r->capture_prog, err)))
         return res;
     r->cap_mvp = glGetUniformLocation(r->capture_prog, "u_mvp");
     r->cap_light_mvp = glGetUniformLocation(r->capture_prog, "u_light_mvp");
@@ -274,28 +301,28 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
 
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_N %d\n#define JD_B %d\n#define JD_NB %d\n",
              r->highp, n, SH_BLOCK, nb);
-    if ((res = build("shaders_es2/quad.vert", "shaders_es2/sh_project.frag", def, quad_attribs, &r->project_prog, err)))
+    if ((res = build(r, "shaders_es2/quad.vert", "shaders_es2/sh_project.frag", def, quad_attribs, &r->project_prog, err)))
         return res;
     r->proj_atlas = glGetUniformLocation(r->project_prog, "u_atlas");
     r->proj_texel = glGetUniformLocation(r->project_prog, "u_atlas_texel");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, nb, nb);
-    if ((res = build("shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_faces_prog, err)))
+    if ((res = build(r, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_faces_prog, err)))
         return res;
     r->rf_src = glGetUniformLocation(r->reduce_faces_prog, "u_src");
     r->rf_texel = glGetUniformLocation(r->reduce_faces_prog, "u_src_texel");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX 6\n#define JD_RY 1\n", r->highp);
-    if ((res = build("shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_final_prog, err)))
+    if ((res = build(r, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_final_prog, err)))
         return res;
     r->rl_src = glGetUniformLocation(r->reduce_final_prog, "u_src");
     r->rl_texel = glGetUniformLocation(r->reduce_final_prog, "u_src_texel");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 0\n", BLUR_TAPS);
-    if ((res = build("shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->blur_prog, err))) return res;
+    if ((res = build(r, "shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->blur_prog, err))) return res;
     r->blur_src = glGetUniformLocation(r->blur_prog, "u_src");
     r->blur_step = glGetUniformLocation(r->blur_prog, "u_step");
     r->blur_inv = glGetUniformLocation(r->blur_prog, "u_inv_2s2");
     r->blur_scale = glGetUniformLocation(r->blur_prog, "u_uv_scale");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 1\n", BLUR_TAPS);
-    if ((res = build("shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->combine_prog, err)))
+    if ((res = build(r, "shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->combine_prog, err)))
         return res;
     r->comb_src = glGetUniformLocation(r->combine_prog, "u_src");
     r->comb_step = glGetUniformLocation(r->combine_prog, "u_step");

@@ -47,5 +47,8 @@ expect "render default" 0 "wrote $tmp/ok.png" -- "$jade" render --size 96x64 --o
 if [ -s "$tmp/ok.png" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: no PNG written"; fi
 expect "sheet" 0 "none | single | dual" -- "$jade" render --size 64x64 --sheet "$tmp/sheet.png"
 expect "info" 0 "fragment highp" -- "$jade" info
+expect "info profile" 0 "per fragment (no vertex texture units)" -- "$jade" info --profile mali400
+expect "bad profile" 2 "unknown profile 'ps2'" -- "$jade" info --profile ps2
+expect "render bad profile" 2 "unknown profile 'ps2'" -- "$jade" render --profile ps2
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

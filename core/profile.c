@@ -1,0 +1,54 @@
+#include "profile.h"
+
+#include <stdio.h>
+#include <string.h>
+
+const jd_profile jd_profiles[] = {
+    {"generic", "any GLES 2.0 device: the specification's minimums, no extensions", 2048, 2048, 2048, 2048, 128, 16, 8,
+     8, 0, 0, 0, "OpenGL ES 2.0.25, tables 6.18-6.20 (sizes raised to 2048, the smallest jade renders with)"},
+    {"vc4", "Raspberry Pi 0-3 (VideoCore IV, Mesa vc4)", 2048, 2048, 2048, 2048, 256, 256, 8, 8, 8, 1, 0,
+     "Mesa vc4_screen.c: 2D textures 2048, 8 varyings, samplers in both stages, fp32 (highp) shaders, "
+     "8- and 16-bit index buffers only"},
+    {"mali400", "Mali-400/450 (Utgard: ARM driver, Mesa lima)", 4096, 4096, 4096, 1024, 256, 256, 12, 8, 0, 0, 0,
+     "ARM gles_config_m200.h / gles2_config_m200.h: 256 uniform vectors per stage, no vertex texture units, "
+     "renderbuffers and viewports 4096, cube maps 1024; fragment shaders fp16 only"},
+};
+const int jd_profile_count = (int)(sizeof jd_profiles / sizeof jd_profiles[0]);
+
+const jd_profile *jd_profile_find(const char *name)
+{
+    for (int i = 0; i < jd_profile_count; i++)
+        if (strcmp(jd_profiles[i].name, name) == 0) return &jd_profiles[i];
+    return NULL;
+}
+
+static void lower(int *v, int limit)
+{
+    if (*v > limit) *v = limit;
+}
+
+void jd_profile_apply(const jd_profile *p, jd_gl_caps *c)
+{
+    lower(&c->max_texture_size, p->max_texture_size);
+    lower(&c->max_renderbuffer_size, p->max_renderbuffer_size);
+    lower(&c->max_cube_map_size, p->max_cube_map_size);
+    lower(&c->max_viewport_w, p->max_viewport);
+    lower(&c->max_viewport_h, p->max_viewport);
+    lower(&c->max_vertex_uniform_vectors, p->max_vertex_uniform_vectors);
+    lower(&c->max_fragment_uniform_vectors, p->max_fragment_uniform_vectors);
+    lower(&c->max_varying_vectors, p->max_varying_vectors);
+    lower(&c->max_texture_units, p->max_texture_units);
+    lower(&c->max_vertex_texture_units, p->max_vertex_texture_units);
+    if (!p->frag_highp) {
+        c->frag_highp_precision = 0;
+        c->frag_highp_range = 0;
+    }
+    if (!p->ext_element_index_uint) c->ext_element_index_uint = 0;
+    /* Optional extensions the profiles do not promise. */
+    c->ext_disjoint_timer_query = 0;
+    c->ext_depth_texture = 0;
+    c->ext_texture_float = 0;
+    c->ext_packed_depth_stencil = 0;
+    c->ext_standard_derivatives = 0;
+    snprintf(c->profile, sizeof c->profile, "%s", p->name);
+}
