@@ -34,7 +34,7 @@ int jd_cmd_info(int argc, char **argv)
     }
     jd_error err = {0};
     jd_platform *p = NULL;
-    jd_platform_desc pd = {"headless", 64, 64};
+    jd_platform_desc pd = {.kind = "headless", .width = 64, .height = 64};
     if (jd_platform_open(&pd, &p, &err)) {
         fprintf(stderr, "jade info: %s\n", err.msg);
         return 1;

@@ -15,6 +15,8 @@ static void usage(FILE *f)
             "commands:\n"
             "  render   render a Draco mesh in translucent material to a PNG\n"
             "  bench    time none/single/dual with an orbiting light, print JSON\n"
+            "  view     an X11 window with the scene, under a device profile if asked\n"
+            "  kiosk    fullscreen on DRM/KMS (no desktop), frame statistics at the end\n"
             "  info     print the GL device's limits and usable extensions\n\n"
             "'jade <command> --help' lists a command's options.\n");
 }
@@ -31,6 +33,8 @@ int main(int argc, char **argv)
     if (!strcmp(c, "render")) return jd_cmd_render(argc, argv);
     if (!strcmp(c, "info")) return jd_cmd_info(argc, argv);
     if (!strcmp(c, "bench")) return jd_cmd_bench(argc, argv);
+    if (!strcmp(c, "view")) return jd_cmd_view(argc, argv);
+    if (!strcmp(c, "kiosk")) return jd_cmd_kiosk(argc, argv);
     fprintf(stderr, "jade: unknown command '%s' (see jade --help)\n", c);
     return 2;
 }

@@ -20,14 +20,25 @@ typedef struct opt {
 } opt;
 
 #define OFF(f) offsetof(jd_options, f)
-#define R JD_OPT_RENDER
+/* R and B also cover the interactive commands where an option makes sense
+ * there: the scene, material and device options. */
+#define R (JD_OPT_RENDER | JD_OPT_VIEW | JD_OPT_KIOSK)
 #define B JD_OPT_BENCH
+#define RO JD_OPT_RENDER
+#define V JD_OPT_VIEW
+#define K JD_OPT_KIOSK
 static const opt table[] = {
     {"--mesh", T_STR, OFF(mesh), 0, 0, R | B, "FILE.drc   Draco mesh [the default asset]"},
-    {"--out", T_STR, OFF(out), 0, 0, R, "FILE.png   output image [jade.png]"},
-    {"--sheet", T_STR, OFF(sheet), 0, 0, R, "FILE.png   none | single | dual side by side, labelled"},
-    {"--size", T_SIZE, 0, 16, 4096, R | B, "WxH        image size [512x512]"},
-    {"--frames", T_INT, OFF(frames), 1, 1000000, R | B, "N          frames to render [render 1, bench 200]"},
+    {"--out", T_STR, OFF(out), 0, 0, RO, "FILE.png   output image [jade.png]"},
+    {"--sheet", T_STR, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual side by side, labelled"},
+    {"--screenshot", T_STR, OFF(screenshot), 0, 0, V, "FILE.png   write the last frame (with --frames)"},
+    {"--platform", T_STR, OFF(platform), 0, 0, K, "P          drm [default], x11 or headless"},
+    {"--drm-device", T_STR, OFF(drm_device), 0, 0, K, "PATH       [the first KMS-capable /dev/dri/card*]"},
+    {"--connector", T_STR, OFF(connector), 0, 0, K, "NAME       e.g. HDMI-A-1 [the first connected]"},
+    {"--display-mode", T_STR, OFF(display_mode), 0, 0, K, "WxH[@Hz]   [the preferred mode, else the largest]"},
+    {"--rotate", T_INT, OFF(rotation), 0, 270, K | RO, "DEG        0, 90, 180 or 270, counter-clockwise as DRM (portrait panels) [0]"},
+    {"--size", T_SIZE, 0, 16, 4096, RO | V | B, "WxH        image or window size [512x512]"},
+    {"--frames", T_INT, OFF(frames), 1, 100000000, R | B, "N          frames [render 1, bench 200, view/kiosk: until closed]"},
     {"--mode", T_MODE, OFF(mode_list), 0, 0, R | B, "M          none|single|dual [dual]; bench also: all"},
     {"--material", T_STR, OFF(material), 0, 0, R | B, "NAME       measured material [marble]"},
     {"--sigma-s", T_FLOAT3, OFF(scene.sigma_s), 0, 1000, R | B, "R,G,B      reduced scattering, mm^-1"},
@@ -58,6 +69,9 @@ static const opt table[] = {
 };
 #undef R
 #undef B
+#undef RO
+#undef V
+#undef K
 
 void jd_options_defaults(jd_options *o)
 {
@@ -200,6 +214,10 @@ int jd_options_finish(jd_options *o, const char *cmd)
     if (!o->has_sigma_s) memcpy(o->scene.sigma_s, m->sigma_s, sizeof m->sigma_s);
     if (!o->has_sigma_a) memcpy(o->scene.sigma_a, m->sigma_a, sizeof m->sigma_a);
     if (!o->has_eta) o->scene.eta = m->eta;
+    if (o->rotation % 90) {
+        fprintf(stderr, "jade %s: --rotate: %d is not 0, 90, 180 or 270\n", cmd, o->rotation);
+        return 0;
+    }
     if (o->rdesc.cube_size && o->rdesc.cube_size % 8) {
         fprintf(stderr, "jade %s: --cube-size: %d is not a multiple of 8\n", cmd, o->rdesc.cube_size);
         return 0;

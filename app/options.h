@@ -13,6 +13,10 @@ typedef struct jd_options {
     const char *material;
     const char *mode_list;    /* bench: "all" or one mode */
     const char *profile;      /* device profile to emulate, or NULL */
+    const char *platform;     /* headless, x11, drm */
+    const char *screenshot;   /* view: PNG written after the last frame */
+    const char *drm_device, *connector, *display_mode;
+    int rotation;
     int width, height;
     int frames;
     int budget_mb;
@@ -23,7 +27,7 @@ typedef struct jd_options {
     int has_sigma_s, has_sigma_a, has_eta;
 } jd_options;
 
-enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4 };
+enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD_OPT_KIOSK = 16 };
 
 void jd_options_defaults(jd_options *o);
 /* Parses argv[first..argc); prints a one-line error and returns 0 on bad input.

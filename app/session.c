@@ -67,11 +67,14 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
         fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
         return 0;
     }
-    jd_platform_desc pd = {"headless", o->width, o->height};
+    jd_platform_desc pd = {.kind = o->platform ? o->platform : "headless", .width = o->width, .height = o->height,
+                           .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode};
     if (jd_platform_open(&pd, &s->platform, &err)) {
         fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
         return 0;
     }
+    /* The drawable decides the size (a display mode, a window). */
+    jd_platform_size(s->platform, &o->width, &o->height);
     if (jd_gl_caps_query(&s->caps, &err)) {
         fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
         return 0;
@@ -83,6 +86,8 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
     rd.target_fbo = jd_platform_framebuffer(s->platform);
     rd.width = o->width;
     rd.height = o->height;
+    jd_platform_max_size(s->platform, &rd.max_width, &rd.max_height);
+    rd.rotation = o->rotation;
     rd.get_proc = jd_platform_gl_proc;
     if (jd_renderer_create(&rd, &s->arena, &s->renderer, &err)) {
         fprintf(stderr, "jade %s: %s: %s\n", cmd, s->mesh_path, err.msg);

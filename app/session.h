@@ -6,6 +6,7 @@
 #include "gl_caps.h"
 #include "options.h"
 #include "platform.h"
+#include "profile.h"
 
 typedef struct jd_session {
     void *memory;

@@ -343,6 +343,10 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     jd_renderer_desc *d = &r->d;
     if (d->width <= 0) d->width = 512;
     if (d->height <= 0) d->height = 512;
+    if (d->max_width < d->width) d->max_width = d->width;
+    if (d->max_height < d->height) d->max_height = d->height;
+    if (d->rotation != 0 && d->rotation != 90 && d->rotation != 180 && d->rotation != 270)
+        return jd_fail(err, JD_ERR_ARG, "rotation %d must be 0, 90, 180 or 270", d->rotation);
     if (!d->cube_size) d->cube_size = 64;
     if (!d->light_map_size) d->light_map_size = 256;
     if (!d->proxy_cells) d->proxy_cells = 40;
@@ -404,8 +408,8 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     if ((res = build_programs(r, err))) goto fail;
 
     int n = d->cube_size, nb = n / SH_BLOCK;
-    int sw = (d->width + d->spread_divisor - 1) / d->spread_divisor;
-    int shh = (d->height + d->spread_divisor - 1) / d->spread_divisor;
+    int sw = (d->max_width + d->spread_divisor - 1) / d->spread_divisor;
+    int shh = (d->max_height + d->spread_divisor - 1) / d->spread_divisor;
     if ((res = make_target(r, &r->light, d->light_map_size, d->light_map_size, 1, 0, "light depth", err)) ||
         (res = make_target(r, &r->atlas, 3 * n, 2 * n, 1, 0, "cube capture", err)) ||
         (res = make_target(r, &r->sh1, 6 * nb, 27 * nb, 0, 0, "SH projection", err)) ||
@@ -418,7 +422,7 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
         goto fail;
     glBindFramebuffer(GL_FRAMEBUFFER, d->target_fbo);
     *out = r;
-    return JD_OK;
+    return jd_renderer_resize(r, d->width, d->height, err);
 fail:
     jd_renderer_destroy(r);
     return res;
@@ -443,6 +447,22 @@ void jd_renderer_destroy(jd_renderer *r)
 size_t jd_renderer_target_bytes(const jd_renderer *r) { return r->target_bytes; }
 void jd_renderer_finish(jd_renderer *r) { (void)r; glFinish(); }
 void jd_renderer_set_timing(jd_renderer *r, int on) { r->d.timing = on; }
+
+jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *err)
+{
+    if (width < 1 || height < 1 || width > r->d.max_width || height > r->d.max_height)
+        return jd_fail(err, JD_ERR_ARG, "size %dx%d outside 1x1..%dx%d set at start-up", width, height, r->d.max_width,
+                       r->d.max_height);
+    r->d.width = width;
+    r->d.height = height;
+    int div = r->d.spread_divisor;
+    target *spread[] = {&r->spread0, &r->spread_tmp, &r->spread1, &r->spread2};
+    for (int i = 0; i < 4; i++) {
+        spread[i]->w = (width + div - 1) / div;
+        spread[i]->h = (height + div - 1) / div;
+    }
+    return JD_OK;
+}
 int jd_renderer_highp(const jd_renderer *r) { return r->highp; }
 int jd_renderer_vertex_thickness(const jd_renderer *r) { return r->vertex_thickness; }
 int jd_renderer_has_gpu_timer(const jd_renderer *r) { return r->tq.ok; }
@@ -473,12 +493,21 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
     float mm_per_unit = s->mm_per_unit > 0 ? s->mm_per_unit : 100.0f / (2.0f * radius);
     f->mm_per_world = mm_per_unit * radius;
 
-    float aspect = (float)r->d.width / (float)r->d.height;
+    /* A panel mounted at 90 or 270 degrees shows the picture sideways: the
+     * camera sees the rotated aspect and clip space turns to meet the panel. */
+    int quarter = r->d.rotation == 90 || r->d.rotation == 270;
+    float aspect = quarter ? (float)r->d.height / (float)r->d.width : (float)r->d.width / (float)r->d.height;
     float dist = s->cam_distance > 0 ? s->cam_distance : 2.7f;
     float fov = s->fov_deg > 1 ? s->fov_deg : 35.0f;
     f->eye = jd_v3_scale(jd_v3_from_angles(s->cam_azimuth, s->cam_elevation), dist);
     jd_mat4 view = jd_m4_look_at(f->eye, jd_v3(0, 0, 0), jd_v3(0, 1, 0));
     jd_mat4 proj = jd_m4_perspective(fov, aspect, fmaxf(dist - 1.2f, 0.05f), dist + 1.2f);
+    if (r->d.rotation) {
+        float a = (float)r->d.rotation * 3.14159265f / 180.0f, c = roundf(cosf(a)), sn = roundf(sinf(a));
+        jd_mat4 rot = jd_m4_identity();
+        rot.m[0] = c; rot.m[1] = sn; rot.m[4] = -sn; rot.m[5] = c;
+        proj = jd_m4_mul(rot, proj);
+    }
     f->mvp = jd_m4_mul(proj, view);
 
     f->light_dir = jd_v3_from_angles(s->light_azimuth, s->light_elevation);
@@ -513,7 +542,8 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
 
     /* The paper's spread width, sigma = 2 sigma_s, read as millimetres and
      * turned into pixels of the low-resolution buffer at the object's depth. */
-    double world_per_px = 2.0 * dist * tan(fov * M_PI / 360.0) / r->d.height * r->d.spread_divisor;
+    double world_per_px = 2.0 * dist * tan(fov * M_PI / 360.0) / (quarter ? r->d.width : r->d.height) *
+                          r->d.spread_divisor;
     f->blur_sigma_px = (float)(2.0 * mean_ss / (world_per_px * f->mm_per_world));
     if (f->blur_sigma_px < 0.25f) f->blur_sigma_px = 0.25f;
     if (f->blur_sigma_px > 24.0f) f->blur_sigma_px = 24.0f;

@@ -20,6 +20,8 @@ typedef struct jd_renderer_desc {
     const jd_gl_caps *caps;
     unsigned target_fbo;  /* where frames go (the platform's) */
     int width, height;
+    int max_width, max_height; /* [width x height] the largest jd_renderer_resize may ask */
+    int rotation;         /* 0, 90, 180 or 270 degrees: portrait panels, applied in the projection */
     int cube_size;        /* [64] texels per capture face, a multiple of 8 */
     int light_map_size;   /* [256] */
     int proxy_cells;      /* [40] vertex-clustering grid of the proxy mesh */
@@ -75,6 +77,9 @@ void jd_renderer_destroy(jd_renderer *r);
 void jd_renderer_finish(jd_renderer *r);
 /* glFinish after each pass, recording CPU times in jd_frame_stats. */
 void jd_renderer_set_timing(jd_renderer *r, int on);
+/* A new drawable size within desc.max_width x max_height: only viewports
+ * change, nothing is reallocated. */
+jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *err);
 
 size_t jd_renderer_target_bytes(const jd_renderer *r);
 int jd_renderer_highp(const jd_renderer *r);

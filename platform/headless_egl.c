@@ -1,7 +1,7 @@
 /* Headless GLES 2.0 through EGL: Mesa's surfaceless platform first, then the
  * EGL device platform (NVIDIA), then the default display with a pbuffer.
  * Frames go to an offscreen framebuffer object of the requested size. */
-#include "platform.h"
+#include "backend.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -14,7 +14,7 @@
 #define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
 #endif
 
-struct jd_platform {
+struct jd_platform_headless {
     EGLDisplay dpy;
     EGLContext ctx;
     EGLSurface surf;
@@ -23,8 +23,8 @@ struct jd_platform {
     char describe[160];
 };
 
-static struct jd_platform g_headless; /* one context per process is all jade needs */
-static int g_open;
+typedef struct jd_platform_headless jd_headless;
+static jd_headless g_headless; /* one context per process is all jade needs */
 
 static int has_ext(const char *list, const char *name)
 {
@@ -36,7 +36,7 @@ static int has_ext(const char *list, const char *name)
 
 /* Tries one display: initialise, pick an ES2 config, create a context and make
  * it current, surfaceless if the display allows, else on a 1x1 pbuffer. */
-static int try_display(struct jd_platform *p, EGLDisplay dpy, const char *how)
+static int try_display(jd_headless *p, EGLDisplay dpy, const char *how)
 {
     if (dpy == EGL_NO_DISPLAY) return 0;
     EGLint major, minor;
@@ -75,7 +75,7 @@ static int try_display(struct jd_platform *p, EGLDisplay dpy, const char *how)
     return 1;
 }
 
-static int open_any_display(struct jd_platform *p)
+static int open_any_display(jd_headless *p)
 {
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display =
@@ -98,12 +98,11 @@ static int open_any_display(struct jd_platform *p)
     return try_display(p, eglGetDisplay(EGL_DEFAULT_DISPLAY), "default display");
 }
 
-jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_error *err)
+static void headless_close(void *impl);
+
+static jd_result headless_open(const jd_platform_desc *desc, void **out, jd_error *err)
 {
-    if (desc->kind && strcmp(desc->kind, "headless") != 0)
-        return jd_fail(err, JD_ERR_ARG, "platform '%s' is not built into this program (have: headless)", desc->kind);
-    if (g_open) return jd_fail(err, JD_ERR_PLATFORM, "headless platform is already open");
-    struct jd_platform *p = &g_headless;
+    jd_headless *p = &g_headless;
     memset(p, 0, sizeof *p);
     p->w = desc->width > 0 ? desc->width : 512;
     p->h = desc->height > 0 ? desc->height : 512;
@@ -115,7 +114,7 @@ jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_e
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
     if (p->w > max_rb || p->h > max_rb) {
         int w = p->w, h = p->h;
-        jd_platform_close(p);
+        headless_close(p);
         return jd_fail(err, JD_ERR_UNSUPPORTED, "size %dx%d exceeds this GPU's limit of %d", w, h, max_rb);
     }
     /* An RGBA8 texture as colour target (core ES 2.0 has no RGBA8
@@ -140,51 +139,48 @@ jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_e
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, p->depth);
     GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (st != GL_FRAMEBUFFER_COMPLETE) {
-        jd_platform_close(p);
+        headless_close(p);
         return jd_fail(err, JD_ERR_PLATFORM, "offscreen framebuffer %dx%d incomplete (0x%x)", tw, th, st);
     }
-    g_open = 1;
     *out = p;
     return JD_OK;
 }
 
-void jd_platform_size(const jd_platform *p, int *w, int *h) { *w = p->w; *h = p->h; }
-unsigned jd_platform_framebuffer(const jd_platform *p) { return p->fbo; }
-const char *jd_platform_describe(const jd_platform *p) { return p->describe; }
-void *jd_platform_proc(const jd_platform *p, const char *name)
+static void headless_size(const void *impl, int *w, int *h)
 {
-    (void)p;
-    return (void *)eglGetProcAddress(name);
+    const jd_headless *p = impl;
+    *w = p->w;
+    *h = p->h;
 }
 
-void *jd_platform_gl_proc(const char *name) { return (void *)eglGetProcAddress(name); }
+static unsigned headless_framebuffer(const void *impl) { return ((const jd_headless *)impl)->fbo; }
+static const char *headless_describe(const void *impl) { return ((const jd_headless *)impl)->describe; }
 
-jd_result jd_platform_present(jd_platform *p, jd_error *err)
+static jd_result headless_present(void *impl, jd_error *err)
 {
-    (void)p;
+    (void)impl;
     (void)err;
     glFlush(); /* nothing to show; the frame stays in the FBO for readback */
     return JD_OK;
 }
 
-jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err)
+static int headless_poll(void *impl, jd_event *ev)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, p->fbo);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, p->w, p->h, GL_RGBA, GL_UNSIGNED_BYTE, dst);
-    if (glGetError() != GL_NO_ERROR) return jd_fail(err, JD_ERR_GL, "glReadPixels failed");
-    /* GL rows run bottom-up; images run top-down. Swap in place, no scratch. */
-    size_t row = (size_t)p->w * 4;
-    for (int y = 0; y < p->h / 2; y++) {
-        uint8_t *a = dst + row * (size_t)y, *b = dst + row * (size_t)(p->h - 1 - y);
-        for (size_t i = 0; i < row; i++) { uint8_t t = a[i]; a[i] = b[i]; b[i] = t; }
-    }
-    return JD_OK;
+    (void)impl;
+    (void)ev;
+    return 0;
 }
 
-void jd_platform_close(jd_platform *p)
+static void headless_stats(const void *impl, jd_present_stats *st)
 {
-    if (!p || p->dpy == EGL_NO_DISPLAY || !p->dpy) return;
+    (void)impl;
+    (void)st;
+}
+
+static void headless_close(void *impl)
+{
+    jd_headless *p = impl;
+    if (!p || !p->dpy) return;
     if (p->fbo) glDeleteFramebuffers(1, &p->fbo);
     if (p->color) glDeleteTextures(1, &p->color);
     if (p->depth) glDeleteRenderbuffers(1, &p->depth);
@@ -193,5 +189,9 @@ void jd_platform_close(jd_platform *p)
     eglDestroyContext(p->dpy, p->ctx);
     eglTerminate(p->dpy);
     memset(p, 0, sizeof *p);
-    g_open = 0;
 }
+
+const jd_platform_ops jd_headless_ops = {
+    "headless", headless_open, headless_size, headless_size, headless_framebuffer, headless_present,
+    headless_poll, headless_stats, headless_describe, headless_close,
+};

@@ -1,5 +1,5 @@
-/* The one small interface every platform implements: a GLES 2.0 context and
- * somewhere to draw. Knows nothing of translucency. */
+/* The one small interface every platform implements: a GLES 2.0 context,
+ * somewhere to draw, and the user's input. Knows nothing of translucency. */
 #ifndef JD_PLATFORM_H
 #define JD_PLATFORM_H
 
@@ -8,23 +8,57 @@
 
 typedef struct jd_platform jd_platform;
 
+/* Zero fields take the defaults in brackets. */
 typedef struct jd_platform_desc {
-    const char *kind; /* "headless" [default] */
-    int width, height; /* [512 x 512] */
+    const char *kind;         /* "headless" [default], "x11" or "drm" */
+    int width, height;        /* [512 x 512]; drm: taken from the display mode */
+    /* drm only */
+    const char *drm_device;   /* [the first KMS-capable /dev/dri/card*] */
+    const char *connector;    /* e.g. "HDMI-A-1" [the first connected] */
+    const char *display_mode; /* "WxH" or "WxH@Hz" [preferred, else largest] */
 } jd_platform_desc;
+
+typedef enum jd_event_type {
+    JD_EVENT_NONE = 0,
+    JD_EVENT_QUIT,   /* window closed, or SIGINT/SIGTERM */
+    JD_EVENT_RESIZE, /* w, h */
+    JD_EVENT_KEY,    /* key: an ASCII character, or 27 for Escape */
+    JD_EVENT_DRAG,   /* dx, dy in pixels, primary button held */
+    JD_EVENT_SCROLL  /* dy: +1 away from the user, -1 towards */
+} jd_event_type;
+
+typedef struct jd_event {
+    jd_event_type type;
+    int w, h, key;
+    float dx, dy;
+} jd_event;
+
+typedef struct jd_present_stats {
+    unsigned frames, missed_vblanks; /* missed: flips that took more than one refresh */
+    double refresh_hz;
+} jd_present_stats;
 
 jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_error *err);
 void jd_platform_size(const jd_platform *p, int *w, int *h);
+/* The largest size the drawable can take (screen size for windows). */
+void jd_platform_max_size(const jd_platform *p, int *w, int *h);
 /* The GL framebuffer object frames go to (0 for a window surface). */
 unsigned jd_platform_framebuffer(const jd_platform *p);
 jd_result jd_platform_present(jd_platform *p, jd_error *err);
-/* Top-down RGBA8 rows of the last frame, w*h*4 bytes into dst. */
+/* Top-down RGBA8 rows of the frame just drawn (call before present). */
 jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err);
+/* 1 and an event while there are some; never blocks. */
+int jd_platform_poll(jd_platform *p, jd_event *ev);
+void jd_platform_present_stats(const jd_platform *p, jd_present_stats *st);
 void *jd_platform_proc(const jd_platform *p, const char *name);
-/* The same for the platform that is open, as a plain function for the core. */
 void *jd_platform_gl_proc(const char *name);
-/* One line: which EGL path was taken, e.g. "EGL 1.5 surfaceless (Mesa Project)". */
+/* One line: which path was taken, e.g. "EGL 1.5 surfaceless (Mesa Project)". */
 const char *jd_platform_describe(const jd_platform *p);
 void jd_platform_close(jd_platform *p);
+
+/* SIGINT and SIGTERM set a flag that jd_platform_poll reports as
+ * JD_EVENT_QUIT, so a kiosk always gets to restore the display. */
+void jd_quit_on_signals(void);
+int jd_quit_requested(void);
 
 #endif

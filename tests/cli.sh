@@ -47,6 +47,15 @@ expect "render default" 0 "wrote $tmp/ok.png" -- "$jade" render --size 96x64 --o
 if [ -s "$tmp/ok.png" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: no PNG written"; fi
 expect "sheet" 0 "none | single | dual" -- "$jade" render --size 64x64 --sheet "$tmp/sheet.png"
 expect "info" 0 "fragment highp" -- "$jade" info
+t0=$(date +%s%N)
+expect "kiosk without drm" 1 "" -- "$jade" kiosk --drm-device "$tmp/no-card0"
+expect "kiosk bad mode" 2 "" -- "$jade" kiosk --rotate 45
+if [ ! -e /dev/dri ]; then
+    expect "kiosk no device" 1 "no DRM/KMS display device" -- "$jade" kiosk
+fi
+t1=$(date +%s%N)
+if [ $(( (t1 - t0) / 1000000 )) -lt 2000 ]; then pass=$((pass + 1)); echo "ok   kiosk refusals took $(( (t1 - t0) / 1000000 )) ms"; else fail=$((fail + 1)); echo "FAIL: kiosk refusals took too long"; fi
+expect "view bad screenshot" 2 "needs --frames" -- "$jade" view --screenshot "$tmp/v.png"
 expect "info profile" 0 "per fragment (no vertex texture units)" -- "$jade" info --profile mali400
 expect "bad profile" 2 "unknown profile 'ps2'" -- "$jade" info --profile ps2
 expect "render bad profile" 2 "unknown profile 'ps2'" -- "$jade" render --profile ps2

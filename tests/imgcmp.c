@@ -15,15 +15,29 @@ int main(int argc, char **argv)
         return 2;
     }
     double max_rmse = 2.0, max_bad = 0.005, thr = 24;
+    int rotate = 0; /* turn B clockwise by this many degrees first */
     for (int i = 3; i + 1 < argc; i += 2) {
         if (!strcmp(argv[i], "--max-rmse")) max_rmse = atof(argv[i + 1]);
         else if (!strcmp(argv[i], "--max-bad-frac")) max_bad = atof(argv[i + 1]);
         else if (!strcmp(argv[i], "--bad-threshold")) thr = atof(argv[i + 1]);
+        else if (!strcmp(argv[i], "--rotate-b")) rotate = atoi(argv[i + 1]);
     }
     int wa, ha, wb, hb, c;
     unsigned char *a = stbi_load(argv[1], &wa, &ha, &c, 4);
     unsigned char *b = stbi_load(argv[2], &wb, &hb, &c, 4);
     if (!a || !b) { fprintf(stderr, "imgcmp: cannot read %s\n", !a ? argv[1] : argv[2]); return 2; }
+    if (rotate % 360) {
+        if (wb != hb) { printf("imgcmp: --rotate-b needs a square image\n"); return 2; }
+        unsigned char *r = malloc((size_t)wb * hb * 4);
+        for (int y = 0; y < hb; y++)
+            for (int x = 0; x < wb; x++) {
+                int sx = x, sy = y;
+                for (int k = 0; k < (rotate / 90) % 4; k++) { int t = sx; sx = sy; sy = wb - 1 - t; } /* one clockwise turn */
+                memcpy(r + 4 * ((size_t)y * wb + x), b + 4 * ((size_t)sy * wb + sx), 4);
+            }
+        stbi_image_free(b);
+        b = r;
+    }
     if (wa != wb || ha != hb) { printf("imgcmp: sizes differ: %dx%d vs %dx%d\n", wa, ha, wb, hb); return 1; }
     double se = 0, worst = 0;
     long bad = 0, n = (long)wa * ha;
@@ -42,6 +56,6 @@ int main(int argc, char **argv)
     printf("imgcmp %s vs %s: rmse %.3f (max %.3f), largest difference %.0f, pixels off by >%.0f: %.4f%% (max %.4f%%) -> %s\n",
            argv[1], argv[2], rmse, max_rmse, worst, thr, 100 * frac, 100 * max_bad, ok ? "ok" : "DIFFERENT");
     stbi_image_free(a);
-    stbi_image_free(b);
+    if (rotate % 360) free(b); else stbi_image_free(b);
     return ok ? 0 : 1;
 }

@@ -87,7 +87,7 @@ int main(int argc, char **argv)
         return 1;
     }
     jd_platform *p = NULL;
-    jd_platform_desc pd = {"headless", 64, 64};
+    jd_platform_desc pd = {.kind = "headless", .width = 64, .height = 64};
     if (jd_platform_open(&pd, &p, &err)) {
         printf("no GL: %s\n", err.msg);
         return 1;

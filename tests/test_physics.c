@@ -43,7 +43,7 @@ int main(int argc, char **argv)
     jd_mesh mesh;
     jd_load_desc ld = {.path = path, .allow_32bit_indices = 1};
     if (jd_mesh_load_draco(&ld, &a, &mesh, NULL, &err)) { printf("%s\n", err.msg); return 1; }
-    jd_platform_desc pd = {"headless", W, H};
+    jd_platform_desc pd = {.kind = "headless", .width = W, .height = H};
     if (jd_platform_open(&pd, &P, &err)) { printf("%s\n", err.msg); return 1; }
     jd_gl_caps caps;
     jd_gl_caps_query(&caps, &err);

@@ -3,7 +3,7 @@
 # As root it runs apt-get; otherwise it prints the exact command and stops.
 set -eu
 pkgs="build-essential cmake pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
-      libdraco-dev draco libstb-dev libgbm-dev libdrm-dev libx11-dev glslang-tools"
+      libdraco-dev draco libstb-dev libgbm-dev libdrm-dev libx11-dev glslang-tools xvfb"
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

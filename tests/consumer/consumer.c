@@ -17,7 +17,7 @@ int main(int argc, char **argv)
     jd_mesh mesh;
     jd_load_desc ld = {.path = argv[1]};
     jd_platform *p = NULL;
-    jd_platform_desc pd = {"headless", 64, 64};
+    jd_platform_desc pd = {.kind = "headless", .width = 64, .height = 64};
     jd_gl_caps caps;
     jd_renderer *r = NULL;
     if (jd_mesh_load_draco(&ld, &arena, &mesh, NULL, &err) || jd_platform_open(&pd, &p, &err) ||

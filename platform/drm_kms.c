@@ -1,0 +1,369 @@
+/* Fullscreen on a kiosk without a desktop: DRM/KMS for the display, GBM for
+ * the buffers, EGL for the context. One modeset, then page flips paced by
+ * vblank events; the original CRTC is put back on close. */
+#include "backend.h"
+#include "drm_select.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <xf86drm.h>
+#include <xf86drmMode.h>
+#include <gbm.h>
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GLES2/gl2.h>
+
+#ifndef EGL_PLATFORM_GBM_KHR
+#define EGL_PLATFORM_GBM_KHR 0x31D7
+#endif
+
+#define MAX_CONNECTORS 16
+#define MAX_MODES 64
+
+typedef struct drm_platform {
+    int fd;
+    char device[64], connector_name[32];
+    uint32_t connector_id, crtc_id;
+    drmModeModeInfo mode;
+    drmModeCrtc *saved_crtc;
+    struct gbm_device *gbm;
+    struct gbm_surface *gbm_surface;
+    uint32_t format;
+    EGLDisplay edpy;
+    EGLContext ctx;
+    EGLSurface surf;
+    struct gbm_bo *shown;
+    int modeset_done, flip_pending;
+    unsigned frames, missed, last_seq;
+    char describe[512];
+} drm_platform;
+
+static drm_platform g_drm;
+
+static void drm_close(void *impl);
+
+static int kms_capable(int fd)
+{
+    drmModeRes *res = drmModeGetResources(fd);
+    int ok = res && res->count_connectors > 0 && res->count_crtcs > 0;
+    drmModeFreeResources(res);
+    return ok;
+}
+
+static jd_result open_device(drm_platform *p, const char *want, jd_error *err)
+{
+    if (want) {
+        p->fd = open(want, O_RDWR | O_CLOEXEC);
+        if (p->fd < 0)
+            return jd_fail(err, JD_ERR_PLATFORM, "%s: cannot open: %s%s", want, strerror(errno),
+                           errno == EACCES ? " (add the user to the 'video' group)" : "");
+        if (!kms_capable(p->fd))
+            return jd_fail(err, JD_ERR_PLATFORM, "%s: not a KMS display device (no connectors or CRTCs)", want);
+        snprintf(p->device, sizeof p->device, "%s", want);
+        return JD_OK;
+    }
+    for (int i = 0; i < 16; i++) {
+        char path[32];
+        snprintf(path, sizeof path, "/dev/dri/card%d", i);
+        int fd = open(path, O_RDWR | O_CLOEXEC);
+        if (fd < 0) continue;
+        if (kms_capable(fd)) {
+            p->fd = fd;
+            snprintf(p->device, sizeof p->device, "%s", path);
+            return JD_OK;
+        }
+        close(fd);
+    }
+    return jd_fail(err, JD_ERR_PLATFORM,
+                   "no DRM/KMS display device (no KMS-capable /dev/dri/card*); a kiosk needs a display driver");
+}
+
+/* Finds a CRTC for the connector: the one its encoder drives, else the
+ * first any of its encoders can use. */
+static uint32_t find_crtc(int fd, drmModeRes *res, drmModeConnector *conn)
+{
+    if (conn->encoder_id) {
+        drmModeEncoder *enc = drmModeGetEncoder(fd, conn->encoder_id);
+        uint32_t crtc = enc ? enc->crtc_id : 0;
+        drmModeFreeEncoder(enc);
+        if (crtc) return crtc;
+    }
+    for (int e = 0; e < conn->count_encoders; e++) {
+        drmModeEncoder *enc = drmModeGetEncoder(fd, conn->encoders[e]);
+        if (!enc) continue;
+        for (int c = 0; c < res->count_crtcs; c++)
+            if (enc->possible_crtcs & (1u << c)) {
+                drmModeFreeEncoder(enc);
+                return res->crtcs[c];
+            }
+        drmModeFreeEncoder(enc);
+    }
+    return 0;
+}
+
+static jd_result choose_output(drm_platform *p, const jd_platform_desc *desc, jd_error *err)
+{
+    drmModeRes *res = drmModeGetResources(p->fd);
+    if (!res) return jd_fail(err, JD_ERR_PLATFORM, "%s: cannot read KMS resources", p->device);
+    static jd_drm_connector info[MAX_CONNECTORS];
+    static jd_drm_mode modes[MAX_CONNECTORS][MAX_MODES];
+    drmModeConnector *conns[MAX_CONNECTORS] = {0};
+    int n = res->count_connectors < MAX_CONNECTORS ? res->count_connectors : MAX_CONNECTORS;
+    for (int i = 0; i < n; i++) {
+        conns[i] = drmModeGetConnector(p->fd, res->connectors[i]);
+        memset(&info[i], 0, sizeof info[i]);
+        if (!conns[i]) continue;
+        info[i].type = conns[i]->connector_type;
+        info[i].type_id = conns[i]->connector_type_id;
+        info[i].connected = conns[i]->connection == DRM_MODE_CONNECTED;
+        int m = conns[i]->count_modes < MAX_MODES ? conns[i]->count_modes : MAX_MODES;
+        for (int k = 0; k < m; k++) {
+            modes[i][k].w = conns[i]->modes[k].hdisplay;
+            modes[i][k].h = conns[i]->modes[k].vdisplay;
+            modes[i][k].hz = (int)conns[i]->modes[k].vrefresh;
+            modes[i][k].preferred = (conns[i]->modes[k].type & DRM_MODE_TYPE_PREFERRED) != 0;
+        }
+        info[i].num_modes = m;
+        info[i].modes = modes[i];
+    }
+    char why[300];
+    jd_result r = JD_OK;
+    int c = jd_drm_pick_connector(info, n, desc->connector, why, sizeof why);
+    if (c < 0) {
+        r = jd_fail(err, JD_ERR_PLATFORM, "%s: %s", p->device, why);
+        goto done;
+    }
+    jd_drm_connector_name(&info[c], p->connector_name, sizeof p->connector_name);
+    int w = 0, h = 0, hz = 0;
+    if (desc->display_mode && !jd_drm_parse_mode(desc->display_mode, &w, &h, &hz)) {
+        r = jd_fail(err, JD_ERR_ARG, "display mode '%s' is not WxH or WxH@Hz", desc->display_mode);
+        goto done;
+    }
+    int m = jd_drm_pick_mode(info[c].modes, info[c].num_modes, w, h, hz);
+    if (m < 0) {
+        r = jd_fail(err, JD_ERR_PLATFORM, "%s: %s does not offer the mode %s", p->device, p->connector_name,
+                    desc->display_mode);
+        goto done;
+    }
+    p->mode = conns[c]->modes[m];
+    p->connector_id = conns[c]->connector_id;
+    p->crtc_id = find_crtc(p->fd, res, conns[c]);
+    if (!p->crtc_id) r = jd_fail(err, JD_ERR_PLATFORM, "%s: no CRTC can drive %s", p->device, p->connector_name);
+done:
+    for (int i = 0; i < n; i++) drmModeFreeConnector(conns[i]);
+    drmModeFreeResources(res);
+    return r;
+}
+
+/* EGL's config must carry the GBM surface's format as its visual. */
+static EGLConfig match_config(EGLDisplay dpy, uint32_t format)
+{
+    const EGLint attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES2_BIT, EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_RED_SIZE, 8,
+                           EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 16, EGL_NONE};
+    EGLConfig cfgs[64];
+    EGLint n = 0;
+    if (!eglChooseConfig(dpy, attr, cfgs, 64, &n)) return NULL;
+    for (EGLint i = 0; i < n; i++) {
+        EGLint id = 0;
+        if (eglGetConfigAttrib(dpy, cfgs[i], EGL_NATIVE_VISUAL_ID, &id) && (uint32_t)id == format) return cfgs[i];
+    }
+    return NULL;
+}
+
+/* Records the error first (its text may name the device), then releases
+ * everything opened so far. */
+static jd_result fail_open(drm_platform *p, jd_result r)
+{
+    drm_close(p);
+    return r;
+}
+
+static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *err)
+{
+    drm_platform *p = &g_drm;
+    memset(p, 0, sizeof *p);
+    p->fd = -1;
+    jd_result r = open_device(p, desc->drm_device, err);
+    if (r) return fail_open(p, r);
+    /* A display server holding DRM master makes every modeset fail: say so
+     * now rather than at the first frame. */
+    if (!drmIsMaster(p->fd) && drmSetMaster(p->fd) != 0) {
+        char why[300];
+        jd_drm_master_message(p->device, errno, why, sizeof why);
+        return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s", why));
+    }
+    if ((r = choose_output(p, desc, err))) return fail_open(p, r);
+    p->saved_crtc = drmModeGetCrtc(p->fd, p->crtc_id);
+
+    p->gbm = gbm_create_device(p->fd);
+    if (!p->gbm) return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: GBM cannot use this device", p->device));
+    const uint32_t formats[] = {GBM_FORMAT_XRGB8888, GBM_FORMAT_ARGB8888};
+    for (int i = 0; i < 2 && !p->gbm_surface; i++) {
+        p->format = formats[i];
+        p->gbm_surface = gbm_surface_create(p->gbm, p->mode.hdisplay, p->mode.vdisplay, p->format,
+                                            GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+    }
+    if (!p->gbm_surface)
+        return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: no scan-out surface in XRGB8888 or ARGB8888 at %dx%d",
+                                    p->device, p->mode.hdisplay, p->mode.vdisplay));
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    p->edpy = get ? get(EGL_PLATFORM_GBM_KHR, p->gbm, NULL) : eglGetDisplay((EGLNativeDisplayType)p->gbm);
+    EGLint major, minor;
+    if (p->edpy == EGL_NO_DISPLAY || !eglInitialize(p->edpy, &major, &minor) || !eglBindAPI(EGL_OPENGL_ES_API))
+        return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: EGL cannot use the GBM device", p->device));
+    EGLConfig cfg = match_config(p->edpy, p->format);
+    if (!cfg)
+        return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: no EGL config matches the GBM format %s", p->device,
+                                    p->format == GBM_FORMAT_XRGB8888 ? "XRGB8888" : "ARGB8888"));
+    const EGLint ctx_attr[] = {EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE};
+    p->ctx = eglCreateContext(p->edpy, cfg, EGL_NO_CONTEXT, ctx_attr);
+    p->surf = eglCreateWindowSurface(p->edpy, cfg, (EGLNativeWindowType)p->gbm_surface, NULL);
+    if (p->ctx == EGL_NO_CONTEXT || p->surf == EGL_NO_SURFACE || !eglMakeCurrent(p->edpy, p->surf, p->surf, p->ctx))
+        return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: cannot make a GLES 2.0 context current on GBM (0x%x)",
+                                    p->device, eglGetError()));
+    snprintf(p->describe, sizeof p->describe, "DRM/KMS %.63s %.31s %dx%d@%d, GBM %s, EGL %d.%d (%.60s)", p->device,
+             p->connector_name, p->mode.hdisplay, p->mode.vdisplay, p->mode.vrefresh,
+             p->format == GBM_FORMAT_XRGB8888 ? "XRGB8888" : "ARGB8888", major, minor,
+             eglQueryString(p->edpy, EGL_VENDOR));
+    *out = p;
+    return JD_OK;
+}
+
+static void destroy_fb(struct gbm_bo *bo, void *data)
+{
+    int fd = gbm_device_get_fd(gbm_bo_get_device(bo));
+    uint32_t fb = (uint32_t)(uintptr_t)data;
+    if (fb) drmModeRmFB(fd, fb);
+}
+
+/* The scan-out framebuffer of a GBM buffer, made once and kept with it. */
+static uint32_t fb_for(drm_platform *p, struct gbm_bo *bo)
+{
+    uint32_t fb = (uint32_t)(uintptr_t)gbm_bo_get_user_data(bo);
+    if (fb) return fb;
+    uint32_t handles[4] = {gbm_bo_get_handle(bo).u32}, pitches[4] = {gbm_bo_get_stride(bo)}, offsets[4] = {0};
+    if (drmModeAddFB2(p->fd, gbm_bo_get_width(bo), gbm_bo_get_height(bo), p->format, handles, pitches, offsets, &fb,
+                      0) != 0)
+        return 0;
+    gbm_bo_set_user_data(bo, (void *)(uintptr_t)fb, destroy_fb);
+    return fb;
+}
+
+static void on_flip(int fd, unsigned seq, unsigned sec, unsigned usec, void *data)
+{
+    (void)fd;
+    (void)sec;
+    (void)usec;
+    drm_platform *p = data;
+    if (p->last_seq && seq > p->last_seq + 1) p->missed += seq - p->last_seq - 1;
+    p->last_seq = seq;
+    p->flip_pending = 0;
+}
+
+static jd_result wait_flip(drm_platform *p, jd_error *err)
+{
+    drmEventContext ev = {0};
+    ev.version = 2;
+    ev.page_flip_handler = on_flip;
+    while (p->flip_pending) {
+        struct pollfd pfd = {p->fd, POLLIN, 0};
+        int k = poll(&pfd, 1, 1000);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) return jd_fail(err, JD_ERR_PLATFORM, "%s: a page flip did not complete within 1 s", p->device);
+        drmHandleEvent(p->fd, &ev);
+    }
+    return JD_OK;
+}
+
+static jd_result drm_present(void *impl, jd_error *err)
+{
+    drm_platform *p = impl;
+    if (!eglSwapBuffers(p->edpy, p->surf)) return jd_fail(err, JD_ERR_PLATFORM, "eglSwapBuffers failed (0x%x)", eglGetError());
+    struct gbm_bo *bo = gbm_surface_lock_front_buffer(p->gbm_surface);
+    uint32_t fb = bo ? fb_for(p, bo) : 0;
+    if (!fb) return jd_fail(err, JD_ERR_PLATFORM, "%s: cannot make a scan-out framebuffer", p->device);
+    if (!p->modeset_done) {
+        /* The one modeset; every later frame is a page flip. */
+        if (drmModeSetCrtc(p->fd, p->crtc_id, fb, 0, 0, &p->connector_id, 1, &p->mode) != 0)
+            return jd_fail(err, JD_ERR_PLATFORM, "%s: modeset on %s failed: %s%s", p->device, p->connector_name,
+                           strerror(errno), errno == EACCES ? " (another process is DRM master)" : "");
+        p->modeset_done = 1;
+    } else {
+        if (drmModePageFlip(p->fd, p->crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, p) != 0)
+            return jd_fail(err, JD_ERR_PLATFORM, "%s: page flip failed: %s", p->device, strerror(errno));
+        p->flip_pending = 1;
+        jd_result r = wait_flip(p, err);
+        if (r) return r;
+    }
+    if (p->shown) gbm_surface_release_buffer(p->gbm_surface, p->shown);
+    p->shown = bo;
+    p->frames++;
+    return JD_OK;
+}
+
+static void drm_size(const void *impl, int *w, int *h)
+{
+    const drm_platform *p = impl;
+    *w = p->mode.hdisplay;
+    *h = p->mode.vdisplay;
+}
+
+static unsigned drm_framebuffer(const void *impl)
+{
+    (void)impl;
+    return 0;
+}
+
+static int drm_poll(void *impl, jd_event *ev)
+{
+    (void)impl;
+    (void)ev;
+    return 0; /* a kiosk has no input; signals arrive through jd_quit_requested */
+}
+
+static void drm_stats(const void *impl, jd_present_stats *st)
+{
+    const drm_platform *p = impl;
+    st->frames = p->frames;
+    st->missed_vblanks = p->missed;
+    st->refresh_hz = p->mode.vrefresh;
+}
+
+static const char *drm_describe(const void *impl) { return ((const drm_platform *)impl)->describe; }
+
+static void drm_close(void *impl)
+{
+    drm_platform *p = impl;
+    if (p->edpy) {
+        eglMakeCurrent(p->edpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (p->surf) eglDestroySurface(p->edpy, p->surf);
+        if (p->ctx) eglDestroyContext(p->edpy, p->ctx);
+        eglTerminate(p->edpy);
+    }
+    if (p->saved_crtc) {
+        /* Give the display back as it was. */
+        drmModeCrtc *c = p->saved_crtc;
+        drmModeSetCrtc(p->fd, c->crtc_id, c->buffer_id, c->x, c->y, &p->connector_id, 1, c->mode_valid ? &c->mode : NULL);
+        drmModeFreeCrtc(c);
+    }
+    if (p->shown && p->gbm_surface) gbm_surface_release_buffer(p->gbm_surface, p->shown);
+    if (p->gbm_surface) gbm_surface_destroy(p->gbm_surface);
+    if (p->gbm) gbm_device_destroy(p->gbm);
+    if (p->fd >= 0) {
+        drmDropMaster(p->fd);
+        close(p->fd);
+    }
+    memset(p, 0, sizeof *p);
+    p->fd = -1;
+}
+
+const jd_platform_ops jd_drm_ops = {
+    "drm", drm_open, drm_size, drm_size, drm_framebuffer, drm_present, drm_poll, drm_stats, drm_describe, drm_close,
+};

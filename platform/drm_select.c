@@ -1,0 +1,74 @@
+#include "drm_select.h"
+
+#include <stdio.h>
+#include <errno.h>
+#include <string.h>
+
+/* The kernel's names (drm_connector.c), by DRM_MODE_CONNECTOR_* value. */
+static const char *const type_names[] = {
+    "Unknown", "VGA", "DVI-I", "DVI-D", "DVI-A", "Composite", "SVIDEO", "LVDS", "Component", "DIN",
+    "DP", "HDMI-A", "HDMI-B", "TV", "eDP", "Virtual", "DSI", "DPI", "Writeback", "SPI", "USB",
+};
+
+void jd_drm_connector_name(const jd_drm_connector *c, char *out, size_t cap)
+{
+    const char *t = c->type < sizeof type_names / sizeof type_names[0] ? type_names[c->type] : "Unknown";
+    snprintf(out, cap, "%s-%u", t, c->type_id);
+}
+
+int jd_drm_pick_connector(const jd_drm_connector *c, int n, const char *want, char *why, size_t cap)
+{
+    char name[32], seen[256] = "";
+    for (int i = 0; i < n; i++) {
+        jd_drm_connector_name(&c[i], name, sizeof name);
+        size_t len = strlen(seen);
+        snprintf(seen + len, sizeof seen - len, "%s%s %s", i ? ", " : "", name,
+                 c[i].connected ? "connected" : "disconnected");
+        if (want) {
+            if (strcmp(name, want) != 0) continue;
+            if (!c[i].connected || c[i].num_modes == 0) {
+                snprintf(why, cap, "connector %s has no display attached", want);
+                return -1;
+            }
+            return i;
+        }
+        if (c[i].connected && c[i].num_modes > 0) return i;
+    }
+    if (want) snprintf(why, cap, "no connector named %s (have: %s)", want, n ? seen : "none");
+    else snprintf(why, cap, "no connected display (connectors: %s)", n ? seen : "none");
+    return -1;
+}
+
+int jd_drm_parse_mode(const char *s, int *w, int *h, int *hz)
+{
+    char extra;
+    *hz = 0;
+    if (sscanf(s, "%dx%d@%d%c", w, h, hz, &extra) == 3 && *hz > 0) return *w > 0 && *h > 0;
+    *hz = 0;
+    return sscanf(s, "%dx%d%c", w, h, &extra) == 2 && *w > 0 && *h > 0;
+}
+
+int jd_drm_pick_mode(const jd_drm_mode *m, int n, int w, int h, int hz)
+{
+    int best = -1;
+    for (int i = 0; i < n; i++) {
+        if (w) {
+            if (m[i].w != w || m[i].h != h || (hz && m[i].hz != hz)) continue;
+            if (best < 0 || m[i].hz > m[best].hz) best = i;
+            continue;
+        }
+        if (m[i].preferred) return i;
+        long area = (long)m[i].w * m[i].h, best_area = best < 0 ? -1 : (long)m[best].w * m[best].h;
+        if (area > best_area || (area == best_area && m[i].hz > m[best].hz)) best = i;
+    }
+    return best;
+}
+
+void jd_drm_master_message(const char *device, int errnum, char *out, size_t cap)
+{
+    snprintf(out, cap,
+             "%s: cannot become DRM master (%s): %s", device, strerror(errnum),
+             errnum == EACCES || errnum == EPERM || errnum == EBUSY
+                 ? "a display server (X11, Wayland) owns the display; stop it or run from a free VT (systemd unit)"
+                 : "the display is held by another process");
+}

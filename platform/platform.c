@@ -1,0 +1,113 @@
+/* Dispatch to the platform chosen at open, and what all of them share. */
+#include "backend.h"
+
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <EGL/egl.h>
+#include <GLES2/gl2.h>
+
+struct jd_platform {
+    const jd_platform_ops *ops;
+    void *impl;
+};
+
+static struct jd_platform g_platform; /* one display per process */
+
+static const jd_platform_ops *const backends[] = {
+    &jd_headless_ops,
+#ifdef JD_HAVE_X11
+    &jd_x11_ops,
+#endif
+#ifdef JD_HAVE_DRM
+    &jd_drm_ops,
+#endif
+};
+
+jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_error *err)
+{
+    const char *kind = desc->kind ? desc->kind : "headless";
+    if (g_platform.ops) return jd_fail(err, JD_ERR_PLATFORM, "a platform is already open");
+    for (size_t i = 0; i < sizeof backends / sizeof backends[0]; i++) {
+        if (strcmp(backends[i]->kind, kind) != 0) continue;
+        jd_result r = backends[i]->open(desc, &g_platform.impl, err);
+        if (r) return r;
+        g_platform.ops = backends[i];
+        *out = &g_platform;
+        return JD_OK;
+    }
+    char have[64] = "";
+    for (size_t i = 0; i < sizeof backends / sizeof backends[0]; i++)
+        snprintf(have + strlen(have), sizeof have - strlen(have), "%s%s", i ? ", " : "", backends[i]->kind);
+    return jd_fail(err, JD_ERR_ARG, "platform '%s' is not built into this program (have: %s)", kind, have);
+}
+
+void jd_platform_size(const jd_platform *p, int *w, int *h) { p->ops->size(p->impl, w, h); }
+void jd_platform_max_size(const jd_platform *p, int *w, int *h) { p->ops->max_size(p->impl, w, h); }
+unsigned jd_platform_framebuffer(const jd_platform *p) { return p->ops->framebuffer(p->impl); }
+jd_result jd_platform_present(jd_platform *p, jd_error *err) { return p->ops->present(p->impl, err); }
+int jd_platform_poll(jd_platform *p, jd_event *ev)
+{
+    if (jd_quit_requested()) {
+        ev->type = JD_EVENT_QUIT;
+        return 1;
+    }
+    return p->ops->poll(p->impl, ev);
+}
+void jd_platform_present_stats(const jd_platform *p, jd_present_stats *st)
+{
+    memset(st, 0, sizeof *st);
+    p->ops->stats(p->impl, st);
+}
+const char *jd_platform_describe(const jd_platform *p) { return p->ops->describe(p->impl); }
+void *jd_platform_proc(const jd_platform *p, const char *name)
+{
+    (void)p;
+    return (void *)eglGetProcAddress(name);
+}
+void *jd_platform_gl_proc(const char *name) { return (void *)eglGetProcAddress(name); }
+
+jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err)
+{
+    int w, h;
+    jd_platform_size(p, &w, &h);
+    return jd_read_rgba_flipped(jd_platform_framebuffer(p), w, h, dst, err);
+}
+
+void jd_platform_close(jd_platform *p)
+{
+    if (!p || !p->ops) return;
+    p->ops->close(p->impl);
+    memset(p, 0, sizeof *p);
+}
+
+jd_result jd_read_rgba_flipped(unsigned fbo, int w, int h, uint8_t *dst, jd_error *err)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, dst);
+    if (glGetError() != GL_NO_ERROR) return jd_fail(err, JD_ERR_GL, "glReadPixels failed");
+    /* GL rows run bottom-up; images run top-down. Swap in place, no scratch. */
+    size_t row = (size_t)w * 4;
+    for (int y = 0; y < h / 2; y++) {
+        uint8_t *a = dst + row * (size_t)y, *b = dst + row * (size_t)(h - 1 - y);
+        for (size_t i = 0; i < row; i++) { uint8_t t = a[i]; a[i] = b[i]; b[i] = t; }
+    }
+    return JD_OK;
+}
+
+static volatile sig_atomic_t quit_flag;
+static void on_signal(int sig) { (void)sig; quit_flag = 1; }
+
+void jd_quit_on_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+int jd_quit_requested(void) { return quit_flag; }

@@ -1,0 +1,32 @@
+#!/bin/sh
+# jade view in a real X server (Xvfb, started here) renders what headless
+# renders; under the mali400 profile it renders the mediump / per-fragment
+# path, as the render command's explicit flags do.
+jade=$1 imgcmp=$2 out=$3
+if ! command -v Xvfb >/dev/null; then
+    echo "Xvfb is missing: install xvfb (tools/setup.sh does)"; echo "x11: 0 passed, 1 failed"; exit 1
+fi
+d=90
+while [ -e "/tmp/.X$d-lock" ] || [ -e "/tmp/.X11-unix/X$d" ]; do d=$((d + 1)); done
+Xvfb ":$d" -screen 0 640x480x24 -nolisten tcp >/dev/null 2>&1 &
+xpid=$!
+trap 'kill $xpid 2>/dev/null' EXIT
+i=0
+while [ ! -e "/tmp/.X11-unix/X$d" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+pass=0 fail=0
+check() { if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); fi; }
+args="--size 200x160 --cam-azimuth 30 --material skin1"
+check env DISPLAY=":$d" "$jade" view --frames 60 --screenshot "$out/view.png" $args
+check "$jade" render --out "$out/view_headless.png" $args
+check "$imgcmp" "$out/view.png" "$out/view_headless.png" --max-rmse 1.0 --max-bad-frac 0.001 --bad-threshold 16
+check env DISPLAY=":$d" "$jade" view --frames 5 --screenshot "$out/view_mali.png" --profile mali400 $args
+check "$jade" render --out "$out/mali_path.png" --precision mediump --fragment-thickness $args
+check "$imgcmp" "$out/view_mali.png" "$out/mali_path.png" --max-rmse 1.0 --max-bad-frac 0.001 --bad-threshold 16
+env -u DISPLAY "$jade" view --frames 1 >/dev/null 2>"$out/nodisplay.err"
+if [ $? -ne 0 ] && grep -q "DISPLAY is not set" "$out/nodisplay.err" && [ "$(wc -l < "$out/nodisplay.err")" -eq 1 ]; then
+    pass=$((pass + 1)); echo "ok   no display: $(cat "$out/nodisplay.err")"
+else
+    fail=$((fail + 1)); echo "FAIL no display"; cat "$out/nodisplay.err"
+fi
+echo "x11: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
