@@ -17,6 +17,7 @@ typedef struct jd_options {
     const char *screenshot;   /* view: PNG written after the last frame */
     const char *drm_device, *connector, *display_mode;
     int rotation;
+    int atomic;
     int width, height;
     int frames;
     int budget_mb;

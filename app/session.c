@@ -68,7 +68,7 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
         return 0;
     }
     jd_platform_desc pd = {.kind = o->platform ? o->platform : "headless", .width = o->width, .height = o->height,
-                           .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode};
+                           .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode, .atomic = o->atomic};
     if (jd_platform_open(&pd, &s->platform, &err)) {
         fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
         return 0;

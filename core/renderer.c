@@ -232,9 +232,15 @@ static jd_result check_limits(const jd_gl_caps *c, GLuint prog, const char *vs, 
     return JD_OK;
 }
 
-static jd_result build(const jd_renderer *r, const char *vs, const char *fs, const char *defines,
+/* ES 2.0 cannot be asked how many varying vectors a program uses, so each
+ * build states it (vec2..vec4 and float each take one under the packing
+ * rules for jade's shaders) and it is checked against the device's. */
+static jd_result build(const jd_renderer *r, int varyings, const char *vs, const char *fs, const char *defines,
                        const char *const *attribs, GLuint *out, jd_error *err)
 {
+    if (varyings > r->d.caps->max_varying_vectors)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s + %s: %d varying vectors, over this device's %d", vs, fs, varyings,
+                       r->d.caps->max_varying_vectors);
     jd_result res = jd_program_build(vs, fs, defines, attribs, out, err);
     if (res == JD_OK) res = check_limits(r->d.caps, *out, vs, fs, err);
     return res;
@@ -276,7 +282,9 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
                  "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
                  "#define JD_VERTEX_THICKNESS %d\n",
                  r->highp, m != JD_MODE_NONE, m == JD_MODE_DUAL, r->vertex_thickness);
-        if ((res = build(r, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->shade[m].id, err)))
+        int varyings = m == JD_MODE_NONE ? 2 : r->vertex_thickness ? 3 : 4; /* v_pos v_normal [v_light] v_trans */
+        if ((res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
+                         &r->shade[m].id, err)))
             return res;
         shade_locations(&r->shade[m]);
     }
@@ -284,13 +292,15 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n"
              "#define JD_VERTEX_THICKNESS %d\n",
              r->highp, r->vertex_thickness);
-    if ((res = build(r, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->a0.id, err))) return res;
+    if ((res = build(r, r->vertex_thickness ? 3 : 4, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
+                     mesh_attribs, &r->a0.id, err)))
+        return res;
     shade_locations(&r->a0);
 
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n", r->highp);
-    if ((res = build(r, "shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err))) return res;
+    if ((res = build(r, 1, "shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err))) return res;
     r->depth_mvp = glGetUniformLocation(r->depth_prog, "u_light_mvp");
-    if ((res = build(r, "shaders_es2/capture.vert", "shaders_es2/capture.frag", def, mesh_attribs, &r->capture_prog, err)))
+    if ((res = build(r, 2, "shaders_es2/capture.vert", "shaders_es2/capture.frag", def, mesh_attribs, &r->capture_prog, err)))
         return res;
     r->cap_mvp = glGetUniformLocation(r->capture_prog, "u_mvp");
     r->cap_light_mvp = glGetUniformLocation(r->capture_prog, "u_light_mvp");
@@ -301,28 +311,28 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
 
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_N %d\n#define JD_B %d\n#define JD_NB %d\n",
              r->highp, n, SH_BLOCK, nb);
-    if ((res = build(r, "shaders_es2/quad.vert", "shaders_es2/sh_project.frag", def, quad_attribs, &r->project_prog, err)))
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_project.frag", def, quad_attribs, &r->project_prog, err)))
         return res;
     r->proj_atlas = glGetUniformLocation(r->project_prog, "u_atlas");
     r->proj_texel = glGetUniformLocation(r->project_prog, "u_atlas_texel");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, nb, nb);
-    if ((res = build(r, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_faces_prog, err)))
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_faces_prog, err)))
         return res;
     r->rf_src = glGetUniformLocation(r->reduce_faces_prog, "u_src");
     r->rf_texel = glGetUniformLocation(r->reduce_faces_prog, "u_src_texel");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX 6\n#define JD_RY 1\n", r->highp);
-    if ((res = build(r, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_final_prog, err)))
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_final_prog, err)))
         return res;
     r->rl_src = glGetUniformLocation(r->reduce_final_prog, "u_src");
     r->rl_texel = glGetUniformLocation(r->reduce_final_prog, "u_src_texel");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 0\n", BLUR_TAPS);
-    if ((res = build(r, "shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->blur_prog, err))) return res;
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->blur_prog, err))) return res;
     r->blur_src = glGetUniformLocation(r->blur_prog, "u_src");
     r->blur_step = glGetUniformLocation(r->blur_prog, "u_step");
     r->blur_inv = glGetUniformLocation(r->blur_prog, "u_inv_2s2");
     r->blur_scale = glGetUniformLocation(r->blur_prog, "u_uv_scale");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 1\n", BLUR_TAPS);
-    if ((res = build(r, "shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->combine_prog, err)))
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->combine_prog, err)))
         return res;
     r->comb_src = glGetUniformLocation(r->combine_prog, "u_src");
     r->comb_step = glGetUniformLocation(r->combine_prog, "u_step");

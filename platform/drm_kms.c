@@ -40,6 +40,11 @@ typedef struct drm_platform {
     EGLSurface surf;
     struct gbm_bo *shown;
     int modeset_done, flip_pending;
+    /* Atomic modesetting: the primary plane and the property ids it needs. */
+    int atomic;
+    uint32_t plane_id, mode_blob;
+    uint32_t p_conn_crtc, p_crtc_mode, p_crtc_active, p_fb, p_plane_crtc, p_src_x, p_src_y, p_src_w, p_src_h,
+        p_crtc_x, p_crtc_y, p_crtc_w, p_crtc_h;
     unsigned frames, missed, last_seq;
     char describe[512];
 } drm_platform;
@@ -161,6 +166,104 @@ done:
     return r;
 }
 
+static uint32_t prop_id(int fd, uint32_t obj, uint32_t type, const char *name)
+{
+    drmModeObjectProperties *props = drmModeObjectGetProperties(fd, obj, type);
+    uint32_t id = 0;
+    for (uint32_t i = 0; props && i < props->count_props && !id; i++) {
+        drmModePropertyRes *pr = drmModeGetProperty(fd, props->props[i]);
+        if (pr && strcmp(pr->name, name) == 0) id = pr->prop_id;
+        drmModeFreeProperty(pr);
+    }
+    drmModeFreeObjectProperties(props);
+    return id;
+}
+
+static uint64_t prop_value(int fd, uint32_t obj, uint32_t type, const char *name)
+{
+    drmModeObjectProperties *props = drmModeObjectGetProperties(fd, obj, type);
+    uint64_t v = 0;
+    for (uint32_t i = 0; props && i < props->count_props; i++) {
+        drmModePropertyRes *pr = drmModeGetProperty(fd, props->props[i]);
+        if (pr && strcmp(pr->name, name) == 0) v = props->prop_values[i];
+        drmModeFreeProperty(pr);
+    }
+    drmModeFreeObjectProperties(props);
+    return v;
+}
+
+/* Atomic needs the CRTC's primary plane and the ids of the properties a
+ * commit sets. */
+static jd_result setup_atomic(drm_platform *p, jd_error *err)
+{
+    if (drmSetClientCap(p->fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) != 0 ||
+        drmSetClientCap(p->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: the driver does not offer atomic modesetting (drop --atomic)",
+                       p->device);
+    drmModeRes *res = drmModeGetResources(p->fd);
+    int crtc_index = -1;
+    for (int i = 0; res && i < res->count_crtcs; i++)
+        if (res->crtcs[i] == p->crtc_id) crtc_index = i;
+    drmModeFreeResources(res);
+    drmModePlaneRes *planes = drmModeGetPlaneResources(p->fd);
+    for (uint32_t i = 0; planes && i < planes->count_planes && !p->plane_id; i++) {
+        drmModePlane *pl = drmModeGetPlane(p->fd, planes->planes[i]);
+        if (pl && crtc_index >= 0 && (pl->possible_crtcs & (1u << crtc_index)) &&
+            prop_value(p->fd, pl->plane_id, DRM_MODE_OBJECT_PLANE, "type") == DRM_PLANE_TYPE_PRIMARY)
+            p->plane_id = pl->plane_id;
+        drmModeFreePlane(pl);
+    }
+    drmModeFreePlaneResources(planes);
+    if (!p->plane_id) return jd_fail(err, JD_ERR_PLATFORM, "%s: no primary plane for the CRTC of %s", p->device, p->connector_name);
+    const uint32_t C = DRM_MODE_OBJECT_CONNECTOR, R = DRM_MODE_OBJECT_CRTC, P = DRM_MODE_OBJECT_PLANE;
+    p->p_conn_crtc = prop_id(p->fd, p->connector_id, C, "CRTC_ID");
+    p->p_crtc_mode = prop_id(p->fd, p->crtc_id, R, "MODE_ID");
+    p->p_crtc_active = prop_id(p->fd, p->crtc_id, R, "ACTIVE");
+    p->p_fb = prop_id(p->fd, p->plane_id, P, "FB_ID");
+    p->p_plane_crtc = prop_id(p->fd, p->plane_id, P, "CRTC_ID");
+    p->p_src_x = prop_id(p->fd, p->plane_id, P, "SRC_X");
+    p->p_src_y = prop_id(p->fd, p->plane_id, P, "SRC_Y");
+    p->p_src_w = prop_id(p->fd, p->plane_id, P, "SRC_W");
+    p->p_src_h = prop_id(p->fd, p->plane_id, P, "SRC_H");
+    p->p_crtc_x = prop_id(p->fd, p->plane_id, P, "CRTC_X");
+    p->p_crtc_y = prop_id(p->fd, p->plane_id, P, "CRTC_Y");
+    p->p_crtc_w = prop_id(p->fd, p->plane_id, P, "CRTC_W");
+    p->p_crtc_h = prop_id(p->fd, p->plane_id, P, "CRTC_H");
+    if (!p->p_conn_crtc || !p->p_crtc_mode || !p->p_crtc_active || !p->p_fb || !p->p_plane_crtc)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: the atomic properties jade needs are missing", p->device);
+    if (drmModeCreatePropertyBlob(p->fd, &p->mode, sizeof p->mode, &p->mode_blob) != 0)
+        return jd_fail(err, JD_ERR_PLATFORM, "%s: cannot create the mode blob: %s", p->device, strerror(errno));
+    p->atomic = 1;
+    return JD_OK;
+}
+
+/* The first commit sets the mode (ALLOW_MODESET); later ones only move
+ * the plane to the new framebuffer and ask for the flip event. */
+static int atomic_commit(drm_platform *p, uint32_t fb, int modeset)
+{
+    drmModeAtomicReq *req = drmModeAtomicAlloc();
+    if (!req) return -1;
+    if (modeset) {
+        drmModeAtomicAddProperty(req, p->connector_id, p->p_conn_crtc, p->crtc_id);
+        drmModeAtomicAddProperty(req, p->crtc_id, p->p_crtc_mode, p->mode_blob);
+        drmModeAtomicAddProperty(req, p->crtc_id, p->p_crtc_active, 1);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_plane_crtc, p->crtc_id);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_src_x, 0);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_src_y, 0);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_src_w, (uint64_t)p->mode.hdisplay << 16);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_src_h, (uint64_t)p->mode.vdisplay << 16);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_crtc_x, 0);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_crtc_y, 0);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_crtc_w, p->mode.hdisplay);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_crtc_h, p->mode.vdisplay);
+    }
+    drmModeAtomicAddProperty(req, p->plane_id, p->p_fb, fb);
+    uint32_t flags = modeset ? DRM_MODE_ATOMIC_ALLOW_MODESET : DRM_MODE_ATOMIC_NONBLOCK | DRM_MODE_PAGE_FLIP_EVENT;
+    int rc = drmModeAtomicCommit(p->fd, req, flags, p);
+    drmModeAtomicFree(req);
+    return rc;
+}
+
 /* EGL's config must carry the GBM surface's format as its visual. */
 static EGLConfig match_config(EGLDisplay dpy, uint32_t format)
 {
@@ -200,6 +303,7 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
     }
     if ((r = choose_output(p, desc, err))) return fail_open(p, r);
     p->saved_crtc = drmModeGetCrtc(p->fd, p->crtc_id);
+    if (desc->atomic && (r = setup_atomic(p, err))) return fail_open(p, r);
 
     p->gbm = gbm_create_device(p->fd);
     if (!p->gbm) return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: GBM cannot use this device", p->device));
@@ -291,12 +395,16 @@ static jd_result drm_present(void *impl, jd_error *err)
     if (!fb) return jd_fail(err, JD_ERR_PLATFORM, "%s: cannot make a scan-out framebuffer", p->device);
     if (!p->modeset_done) {
         /* The one modeset; every later frame is a page flip. */
-        if (drmModeSetCrtc(p->fd, p->crtc_id, fb, 0, 0, &p->connector_id, 1, &p->mode) != 0)
+        int rc = p->atomic ? atomic_commit(p, fb, 1)
+                           : drmModeSetCrtc(p->fd, p->crtc_id, fb, 0, 0, &p->connector_id, 1, &p->mode);
+        if (rc != 0)
             return jd_fail(err, JD_ERR_PLATFORM, "%s: modeset on %s failed: %s%s", p->device, p->connector_name,
                            strerror(errno), errno == EACCES ? " (another process is DRM master)" : "");
         p->modeset_done = 1;
     } else {
-        if (drmModePageFlip(p->fd, p->crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, p) != 0)
+        int rc = p->atomic ? atomic_commit(p, fb, 0)
+                           : drmModePageFlip(p->fd, p->crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, p);
+        if (rc != 0)
             return jd_fail(err, JD_ERR_PLATFORM, "%s: page flip failed: %s", p->device, strerror(errno));
         p->flip_pending = 1;
         jd_result r = wait_flip(p, err);
@@ -353,6 +461,7 @@ static void drm_close(void *impl)
         drmModeSetCrtc(p->fd, c->crtc_id, c->buffer_id, c->x, c->y, &p->connector_id, 1, c->mode_valid ? &c->mode : NULL);
         drmModeFreeCrtc(c);
     }
+    if (p->mode_blob) drmModeDestroyPropertyBlob(p->fd, p->mode_blob);
     if (p->shown && p->gbm_surface) gbm_surface_release_buffer(p->gbm_surface, p->shown);
     if (p->gbm_surface) gbm_surface_destroy(p->gbm_surface);
     if (p->gbm) gbm_device_destroy(p->gbm);

@@ -16,6 +16,7 @@ typedef struct jd_platform_desc {
     const char *drm_device;   /* [the first KMS-capable /dev/dri/card*] */
     const char *connector;    /* e.g. "HDMI-A-1" [the first connected] */
     const char *display_mode; /* "WxH" or "WxH@Hz" [preferred, else largest] */
+    int atomic;               /* atomic modesetting instead of legacy SetCrtc/PageFlip */
 } jd_platform_desc;
 
 typedef enum jd_event_type {

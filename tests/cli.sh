@@ -50,6 +50,7 @@ expect "info" 0 "fragment highp" -- "$jade" info
 t0=$(date +%s%N)
 expect "kiosk without drm" 1 "" -- "$jade" kiosk --drm-device "$tmp/no-card0"
 expect "kiosk bad mode" 2 "" -- "$jade" kiosk --rotate 45
+expect "kiosk statistics" 0 "missed vblanks" -- "$jade" kiosk --platform headless --frames 20 --size 96x96
 if [ ! -e /dev/dri ]; then
     expect "kiosk no device" 1 "no DRM/KMS display device" -- "$jade" kiosk
 fi
