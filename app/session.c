@@ -12,12 +12,7 @@
 #define JD_ASSET_INSTALL_DIR "/usr/local/share/jade"
 #endif
 
-double jd_now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
+double jd_now_ms(void) { return jd_platform_time_ms(); }
 
 int jd_default_asset(char *out, size_t cap)
 {

@@ -318,7 +318,9 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
                                     p->device, p->mode.hdisplay, p->mode.vdisplay));
     PFNEGLGETPLATFORMDISPLAYEXTPROC get =
         (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
-    p->edpy = get ? get(EGL_PLATFORM_GBM_KHR, p->gbm, NULL) : eglGetDisplay((EGLNativeDisplayType)p->gbm);
+    /* Empty attribute lists, never NULL: some drivers read them unchecked. */
+    static const EGLint no_attribs[] = {EGL_NONE};
+    p->edpy = get ? get(EGL_PLATFORM_GBM_KHR, p->gbm, no_attribs) : eglGetDisplay((EGLNativeDisplayType)p->gbm);
     EGLint major, minor;
     if (p->edpy == EGL_NO_DISPLAY || !eglInitialize(p->edpy, &major, &minor) || !eglBindAPI(EGL_OPENGL_ES_API))
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: EGL cannot use the GBM device", p->device));
@@ -328,7 +330,7 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
                                     p->format == GBM_FORMAT_XRGB8888 ? "XRGB8888" : "ARGB8888"));
     const EGLint ctx_attr[] = {EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE};
     p->ctx = eglCreateContext(p->edpy, cfg, EGL_NO_CONTEXT, ctx_attr);
-    p->surf = eglCreateWindowSurface(p->edpy, cfg, (EGLNativeWindowType)p->gbm_surface, NULL);
+    p->surf = eglCreateWindowSurface(p->edpy, cfg, (EGLNativeWindowType)p->gbm_surface, no_attribs);
     if (p->ctx == EGL_NO_CONTEXT || p->surf == EGL_NO_SURFACE || !eglMakeCurrent(p->edpy, p->surf, p->surf, p->ctx))
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: cannot make a GLES 2.0 context current on GBM (0x%x)",
                                     p->device, eglGetError()));

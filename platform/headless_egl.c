@@ -77,11 +77,13 @@ static int try_display(jd_headless *p, EGLDisplay dpy, const char *how)
 
 static int open_any_display(jd_headless *p)
 {
+    /* Empty attribute lists, never NULL: some drivers read them unchecked. */
+    static const EGLint no_attribs[] = {EGL_NONE};
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display =
         (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
     if (get_platform_display && has_ext(client, "EGL_MESA_platform_surfaceless") &&
-        try_display(p, get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL),
+        try_display(p, get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, no_attribs),
                     "surfaceless"))
         return 1;
     PFNEGLQUERYDEVICESEXTPROC query_devices =
@@ -91,7 +93,7 @@ static int open_any_display(jd_headless *p)
         EGLint n = 0;
         if (query_devices(8, devs, &n))
             for (EGLint i = 0; i < n; i++)
-                if (try_display(p, get_platform_display(EGL_PLATFORM_DEVICE_EXT, devs[i], NULL),
+                if (try_display(p, get_platform_display(EGL_PLATFORM_DEVICE_EXT, devs[i], no_attribs),
                                 "device"))
                     return 1;
     }

@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include <EGL/egl.h>
 #include <GLES2/gl2.h>
@@ -67,6 +68,13 @@ void *jd_platform_proc(const jd_platform *p, const char *name)
     return (void *)eglGetProcAddress(name);
 }
 void *jd_platform_gl_proc(const char *name) { return (void *)eglGetProcAddress(name); }
+
+double jd_platform_time_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
 
 jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err)
 {

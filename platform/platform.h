@@ -51,6 +51,8 @@ jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err);
 /* 1 and an event while there are some; never blocks. */
 int jd_platform_poll(jd_platform *p, jd_event *ev);
 void jd_platform_present_stats(const jd_platform *p, jd_present_stats *st);
+/* Milliseconds on the monotonic clock: frame pacing and statistics. */
+double jd_platform_time_ms(void);
 void *jd_platform_proc(const jd_platform *p, const char *name);
 void *jd_platform_gl_proc(const char *name);
 /* One line: which path was taken, e.g. "EGL 1.5 surfaceless (Mesa Project)". */

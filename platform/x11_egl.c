@@ -38,7 +38,8 @@ static EGLDisplay egl_display_for(Display *dpy)
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     PFNEGLGETPLATFORMDISPLAYEXTPROC get =
         (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
-    if (get && client && strstr(client, "EGL_EXT_platform_x11")) return get(EGL_PLATFORM_X11_KHR, dpy, NULL);
+    static const EGLint no_attribs[] = {EGL_NONE};
+    if (get && client && strstr(client, "EGL_EXT_platform_x11")) return get(EGL_PLATFORM_X11_KHR, dpy, no_attribs);
     return eglGetDisplay((EGLNativeDisplayType)dpy);
 }
 
@@ -94,7 +95,9 @@ static jd_result x11_open(const jd_platform_desc *desc, void **out, jd_error *er
     XSetWMProtocols(p->dpy, p->win, &p->wm_delete, 1);
     XMapWindow(p->dpy, p->win);
 
-    p->surf = eglCreateWindowSurface(p->edpy, cfg, (EGLNativeWindowType)p->win, NULL);
+    /* An empty list, never NULL: some drivers read it unchecked. */
+    static const EGLint no_attribs[] = {EGL_NONE};
+    p->surf = eglCreateWindowSurface(p->edpy, cfg, (EGLNativeWindowType)p->win, no_attribs);
     const EGLint ctx_attr[] = {EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE};
     p->ctx = eglCreateContext(p->edpy, cfg, EGL_NO_CONTEXT, ctx_attr);
     if (p->surf == EGL_NO_SURFACE || p->ctx == EGL_NO_CONTEXT || !eglMakeCurrent(p->edpy, p->surf, p->surf, p->ctx)) {

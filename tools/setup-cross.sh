@@ -8,6 +8,7 @@ archs=${JADE_CROSS_ARCHS:-"arm64 armhf"}
 pkgs="qemu-user pkg-config cmake"
 for a in $archs; do
     pkgs="$pkgs crossbuild-essential-$a libdraco-dev:$a libstb-dev:$a libegl-dev:$a libgles-dev:$a"
+    pkgs="$pkgs libgbm-dev:$a libdrm-dev:$a libx11-dev:$a"
 done
 missing=""
 for p in $pkgs; do
