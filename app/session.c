@@ -45,6 +45,14 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
                 JD_ASSET_INSTALL_DIR);
         return 0;
     }
+    jd_platform_desc pd = {.kind = o->platform ? o->platform : "headless", .width = o->width, .height = o->height,
+                           .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode,
+                           .atomic = o->atomic};
+    /* No display, no point decoding: say so at once. */
+    if (jd_platform_probe(&pd, &err)) {
+        fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+        return 0;
+    }
     /* The one allocation of the run: everything the core keeps lives here. */
     size_t budget = (size_t)o->budget_mb << 20;
     s->memory = malloc(budget);
@@ -62,8 +70,6 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
         fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
         return 0;
     }
-    jd_platform_desc pd = {.kind = o->platform ? o->platform : "headless", .width = o->width, .height = o->height,
-                           .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode, .atomic = o->atomic};
     if (jd_platform_open(&pd, &s->platform, &err)) {
         fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
         return 0;

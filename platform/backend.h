@@ -6,6 +6,8 @@
 
 typedef struct jd_platform_ops {
     const char *kind;
+    /* Cheap check that the display can be had, before any GL (optional). */
+    jd_result (*probe)(const jd_platform_desc *desc, jd_error *err);
     jd_result (*open)(const jd_platform_desc *desc, void **impl, jd_error *err);
     void (*size)(const void *impl, int *w, int *h);
     void (*max_size)(const void *impl, int *w, int *h);

@@ -279,6 +279,16 @@ static EGLConfig match_config(EGLDisplay dpy, uint32_t format)
     return NULL;
 }
 
+static jd_result drm_probe(const jd_platform_desc *desc, jd_error *err)
+{
+    drm_platform probe;
+    memset(&probe, 0, sizeof probe);
+    probe.fd = -1;
+    jd_result r = open_device(&probe, desc->drm_device, err);
+    if (probe.fd >= 0) close(probe.fd);
+    return r;
+}
+
 /* Records the error first (its text may name the device), then releases
  * everything opened so far. */
 static jd_result fail_open(drm_platform *p, jd_result r)
@@ -476,5 +486,5 @@ static void drm_close(void *impl)
 }
 
 const jd_platform_ops jd_drm_ops = {
-    "drm", drm_open, drm_size, drm_size, drm_framebuffer, drm_present, drm_poll, drm_stats, drm_describe, drm_close,
+    "drm", drm_probe, drm_open, drm_size, drm_size, drm_framebuffer, drm_present, drm_poll, drm_stats, drm_describe, drm_close,
 };

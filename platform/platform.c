@@ -26,22 +26,34 @@ static const jd_platform_ops *const backends[] = {
 #endif
 };
 
-jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_error *err)
+static const jd_platform_ops *find_backend(const char *kind, jd_error *err)
 {
-    const char *kind = desc->kind ? desc->kind : "headless";
-    if (g_platform.ops) return jd_fail(err, JD_ERR_PLATFORM, "a platform is already open");
-    for (size_t i = 0; i < sizeof backends / sizeof backends[0]; i++) {
-        if (strcmp(backends[i]->kind, kind) != 0) continue;
-        jd_result r = backends[i]->open(desc, &g_platform.impl, err);
-        if (r) return r;
-        g_platform.ops = backends[i];
-        *out = &g_platform;
-        return JD_OK;
-    }
+    for (size_t i = 0; i < sizeof backends / sizeof backends[0]; i++)
+        if (strcmp(backends[i]->kind, kind) == 0) return backends[i];
     char have[64] = "";
     for (size_t i = 0; i < sizeof backends / sizeof backends[0]; i++)
         snprintf(have + strlen(have), sizeof have - strlen(have), "%s%s", i ? ", " : "", backends[i]->kind);
-    return jd_fail(err, JD_ERR_ARG, "platform '%s' is not built into this program (have: %s)", kind, have);
+    jd_fail(err, JD_ERR_ARG, "platform '%s' is not built into this program (have: %s)", kind, have);
+    return NULL;
+}
+
+jd_result jd_platform_probe(const jd_platform_desc *desc, jd_error *err)
+{
+    const jd_platform_ops *ops = find_backend(desc->kind ? desc->kind : "headless", err);
+    if (!ops) return JD_ERR_ARG;
+    return ops->probe ? ops->probe(desc, err) : JD_OK;
+}
+
+jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_error *err)
+{
+    if (g_platform.ops) return jd_fail(err, JD_ERR_PLATFORM, "a platform is already open");
+    const jd_platform_ops *ops = find_backend(desc->kind ? desc->kind : "headless", err);
+    if (!ops) return JD_ERR_ARG;
+    jd_result r = ops->open(desc, &g_platform.impl, err);
+    if (r) return r;
+    g_platform.ops = ops;
+    *out = &g_platform;
+    return JD_OK;
 }
 
 void jd_platform_size(const jd_platform *p, int *w, int *h) { p->ops->size(p->impl, w, h); }

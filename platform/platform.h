@@ -39,6 +39,9 @@ typedef struct jd_present_stats {
     double refresh_hz;
 } jd_present_stats;
 
+/* Says, in milliseconds and without creating a GL context, whether open
+ * could succeed: no such platform, no display, no KMS device. */
+jd_result jd_platform_probe(const jd_platform_desc *desc, jd_error *err);
 jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_error *err);
 void jd_platform_size(const jd_platform *p, int *w, int *h);
 /* The largest size the drawable can take (screen size for windows). */

@@ -43,6 +43,18 @@ static EGLDisplay egl_display_for(Display *dpy)
     return eglGetDisplay((EGLNativeDisplayType)dpy);
 }
 
+static jd_result x11_probe(const jd_platform_desc *desc, jd_error *err)
+{
+    (void)desc;
+    const char *name = getenv("DISPLAY");
+    if (!name || !*name)
+        return jd_fail(err, JD_ERR_PLATFORM, "no X display: DISPLAY is not set (run under X or Xvfb, or use headless)");
+    Display *d = XOpenDisplay(NULL);
+    if (!d) return jd_fail(err, JD_ERR_PLATFORM, "cannot open the X display '%s'", name);
+    XCloseDisplay(d);
+    return JD_OK;
+}
+
 static jd_result x11_open(const jd_platform_desc *desc, void **out, jd_error *err)
 {
     x11_platform *p = &g_x11;
@@ -237,5 +249,5 @@ static void x11_close(void *impl)
 }
 
 const jd_platform_ops jd_x11_ops = {
-    "x11", x11_open, x11_size, x11_max_size, x11_framebuffer, x11_present, x11_poll, x11_stats, x11_describe, x11_close,
+    "x11", x11_probe, x11_open, x11_size, x11_max_size, x11_framebuffer, x11_present, x11_poll, x11_stats, x11_describe, x11_close,
 };
