@@ -10,10 +10,8 @@ for a in $archs; do
     pkgs="$pkgs crossbuild-essential-$a libdraco-dev:$a libstb-dev:$a libegl-dev:$a libgles-dev:$a"
     pkgs="$pkgs libgbm-dev:$a libdrm-dev:$a libx11-dev:$a"
 done
-missing=""
-for p in $pkgs; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
-done
+# shellcheck disable=SC2086
+missing=$("$(dirname "$0")/missing-packages.sh" $pkgs)
 [ -z "$missing" ] && exit 0
 if [ "$(id -u)" -ne 0 ]; then
     echo "cross builds need:$missing"

@@ -4,10 +4,8 @@
 set -eu
 pkgs="build-essential cmake pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
       libdraco-dev draco libstb-dev libgbm-dev libdrm-dev libx11-dev glslang-tools xvfb"
-missing=""
-for p in $pkgs; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
-done
+# shellcheck disable=SC2086
+missing=$("$(dirname "$0")/missing-packages.sh" $pkgs)
 [ -z "$missing" ] && exit 0
 if [ "$(id -u)" -ne 0 ]; then
     echo "jade needs these Debian packages:$missing"
