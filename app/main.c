@@ -1,4 +1,5 @@
 /* jade: real-time translucency for GLES 2.0 displays. */
+#include <malloc.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -23,6 +24,11 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
+    /* The GL driver (llvmpipe above all) frees and reallocates its frame
+     * buffers every frame; with glibc's default trimming each frame gives
+     * the pages back and faults them in again. A kiosk keeps them. */
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);
+    mallopt(M_MMAP_THRESHOLD, 64 << 20);
     if (argc < 2) {
         fprintf(stderr, "jade: no command given (see jade --help)\n");
         return 2;
