@@ -47,6 +47,10 @@ expect "render default" 0 "wrote $tmp/ok.png" -- "$jade" render --size 96x64 --o
 if [ -s "$tmp/ok.png" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: no PNG written"; fi
 expect "sheet" 0 "none | single | dual" -- "$jade" render --size 64x64 --sheet "$tmp/sheet.png"
 expect "info" 0 "fragment highp" -- "$jade" info
+expect "metric same" 0 '"ssim": 1.00000' -- "$jade" metric "$tmp/ok.png" "$tmp/ok.png"
+expect "metric one picture" 2 "needs two pictures" -- "$jade" metric "$tmp/ok.png"
+expect "metric unreadable" 1 "not a readable PNG" -- "$jade" metric "$tmp/hello.drc" "$tmp/ok.png"
+expect "metric size mismatch" 1 "is 96x64 but" -- "$jade" metric "$tmp/ok.png" "$tmp/sheet.png"
 t0=$(date +%s%N)
 expect "kiosk without drm" 1 "" -- "$jade" kiosk --drm-device "$tmp/no-card0"
 t1=$(date +%s%N)

@@ -1,6 +1,7 @@
 #!/bin/sh
 # Cross-builds jade for aarch64 and armhf with the toolchain files and runs
-# the GL-free tests (units, the Draco reference comparison, hostile inputs)
+# the GL-free tests (units, the Draco reference comparison, hostile inputs,
+# DRM selection, the image metric)
 # under qemu-user. --sizes also reports the stripped size of the aarch64
 # program with Draco linked dynamically and statically.
 set -eu
@@ -13,7 +14,7 @@ for triple in aarch64-linux-gnu arm-linux-gnueabihf; do
     cmake -S . -B "$dir" -DCMAKE_TOOLCHAIN_FILE="toolchains/$triple.cmake" -DCMAKE_BUILD_TYPE=Release >/dev/null
     cmake --build "$dir" -j"$jobs" >/dev/null
     file "$dir/jade" | sed 's/, BuildID.*//'
-    (cd "$dir" && ctest --output-on-failure -R '^(units|draco_reference|bad_inputs)$')
+    (cd "$dir" && ctest --output-on-failure -R '^(units|draco_reference|bad_inputs|drm_select|metric)$')
 done
 # The board-sysroot path: a sysroot made only of Debian's arm64 packages
 # (what a Raspberry Pi OS image holds), no multiarch involved.

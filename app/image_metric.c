@@ -1,0 +1,109 @@
+#include "image_metric.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+float jd_display_to_linear(unsigned char v)
+{
+    double d = v / 255.0, t = d * d; /* undo the gamma-2 encoding */
+    if (t > 0.999) t = 0.999;        /* the shoulder's inverse grows without bound at 1/0.15 */
+    return (float)(t / (1.0 - 0.15 * t));
+}
+
+static double luminance(const float *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+/* SSIM on luminance with an 8x8 window sliding by 4, windows counted when
+ * their centre pixel is in the mask; constants from the reference's peak. */
+static double ssim(const float *a, const float *b, const unsigned char *mask, int w, int h, double k, double peak)
+{
+    const double c1 = (0.01 * peak) * (0.01 * peak), c2 = (0.03 * peak) * (0.03 * peak);
+    double sum = 0;
+    long n = 0;
+    for (int y = 0; y + 8 <= h; y += 4)
+        for (int x = 0; x + 8 <= w; x += 4) {
+            if (mask && !mask[(y + 4) * w + x + 4]) continue;
+            double ma = 0, mb = 0, va = 0, vb = 0, cov = 0;
+            for (int j = 0; j < 8; j++)
+                for (int i = 0; i < 8; i++) {
+                    size_t o = (size_t)(y + j) * w + x + i;
+                    double la = k * luminance(a + 3 * o), lb = luminance(b + 3 * o);
+                    ma += la; mb += lb; va += la * la; vb += lb * lb; cov += la * lb;
+                }
+            ma /= 64; mb /= 64;
+            va = va / 64 - ma * ma; vb = vb / 64 - mb * mb; cov = cov / 64 - ma * mb;
+            sum += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+            n++;
+        }
+    return n ? sum / n : 1.0;
+}
+
+static void errors(const float *a, const float *b, const unsigned char *mask, int w, int h, double k, double peak,
+                   double *rmse, double *psnr)
+{
+    double se = 0;
+    long n = 0;
+    for (long i = 0; i < (long)w * h; i++) {
+        if (mask && !mask[i]) continue;
+        for (int c = 0; c < 3; c++) {
+            double d = k * a[3 * i + c] - b[3 * i + c];
+            se += d * d;
+        }
+        n++;
+    }
+    *rmse = n ? sqrt(se / (3.0 * n)) : 0.0;
+    *psnr = *rmse > 0 ? 20.0 * log10(peak / *rmse) : INFINITY;
+}
+
+void jd_metric_compute(const float *a, const float *b, const unsigned char *mask, int w, int h, jd_metric *m)
+{
+    memset(m, 0, sizeof *m);
+    double ab = 0, aa = 0, peak = 0;
+    for (long i = 0; i < (long)w * h; i++) {
+        if (mask && !mask[i]) continue;
+        m->pixels++;
+        for (int c = 0; c < 3; c++) {
+            ab += (double)a[3 * i + c] * b[3 * i + c];
+            aa += (double)a[3 * i + c] * a[3 * i + c];
+            if (b[3 * i + c] > peak) peak = b[3 * i + c];
+        }
+    }
+    m->peak = peak > 0 ? peak : 1.0;
+    m->scale = aa > 0 ? ab / aa : 1.0;
+    errors(a, b, mask, w, h, 1.0, m->peak, &m->rmse, &m->psnr);
+    errors(a, b, mask, w, h, m->scale, m->peak, &m->rmse_scaled, &m->psnr_scaled);
+    m->ssim = ssim(a, b, mask, w, h, 1.0, m->peak);
+    m->ssim_scaled = ssim(a, b, mask, w, h, m->scale, m->peak);
+}
+
+/* Portable float map: "PF", width, height, scale (negative: little-endian),
+ * then rows from the bottom. */
+float *jd_read_pfm(const char *path, int *w, int *h, char *why, size_t cap)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) { snprintf(why, cap, "cannot open"); return NULL; }
+    char kind[3] = "";
+    double scale = 0;
+    if (fscanf(f, "%2s %d %d %lf", kind, w, h, &scale) != 4 || strcmp(kind, "PF") || *w <= 0 || *h <= 0 ||
+        *w > 16384 || *h > 16384 || scale >= 0 || fgetc(f) == EOF) {
+        snprintf(why, cap, "not a little-endian colour PFM");
+        fclose(f);
+        return NULL;
+    }
+    size_t n = (size_t)*w * *h * 3;
+    float *raw = malloc(n * sizeof(float)), *out = malloc(n * sizeof(float));
+    if (!raw || !out || fread(raw, sizeof(float), n, f) != n) {
+        snprintf(why, cap, "truncated PFM");
+        free(raw); free(out); fclose(f);
+        return NULL;
+    }
+    fclose(f);
+    for (int y = 0; y < *h; y++) /* top-down, as PNGs */
+        memcpy(out + (size_t)y * *w * 3, raw + (size_t)(*h - 1 - y) * *w * 3, sizeof(float) * 3 * *w);
+    free(raw);
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(out[i]) || out[i] < 0) { snprintf(why, cap, "negative or non-finite value"); free(out); return NULL; }
+    return out;
+}
+

@@ -1,0 +1,26 @@
+/* Image comparison in linear light: what jade's pictures are judged by
+ * against a reference. */
+#ifndef JD_IMAGE_METRIC_H
+#define JD_IMAGE_METRIC_H
+
+#include <stddef.h>
+
+typedef struct jd_metric {
+    long pixels;           /* pixels compared (the mask) */
+    double rmse, psnr, ssim;
+    double scale;          /* best single factor k for k*A against B */
+    double rmse_scaled, psnr_scaled, ssim_scaled;
+    double peak;           /* the largest linear value of B in the mask */
+} jd_metric;
+
+/* A and B: w*h*3 linear floats; mask: w*h bytes, nonzero = compared (NULL: all). */
+void jd_metric_compute(const float *a, const float *b, const unsigned char *mask, int w, int h, jd_metric *out);
+/* jade's display encoding undone: the shader writes sqrt(c / (1 + 0.15 c)). */
+float jd_display_to_linear(unsigned char v);
+
+/* A little-endian colour PFM as w*h*3 linear floats, top row first
+ * (malloc'd); NULL and a reason for anything else, negative or
+ * non-finite values included. */
+float *jd_read_pfm(const char *path, int *w, int *h, char *why, size_t cap);
+
+#endif
