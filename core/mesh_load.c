@@ -65,6 +65,10 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
     signal(SIGPIPE, SIG_IGN);
     struct rlimit cpu = {(rlim_t)(d->timeout_ms / 1000 + 2), (rlim_t)(d->timeout_ms / 1000 + 3)};
     setrlimit(RLIMIT_CPU, &cpu);
+    /* A wall-clock bound on the child's whole life, streaming and clean-up
+     * included: a child blocked (not spinning) escapes RLIMIT_CPU, and the
+     * parent waits for it once the mesh has arrived. */
+    alarm((unsigned)(d->timeout_ms / 1000) + 2);
 #ifndef JD_ASAN /* ASan reserves terabytes of shadow; the count caps still hold */
     size_t vm = current_vm_bytes();
     if (vm) {

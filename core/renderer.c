@@ -393,9 +393,10 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     if (!(radius > 0)) radius = 1.0f;
     r->box_half = 0.5f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius * 1.01f;
     while (glGetError() != GL_NO_ERROR) {}
-    if ((res = upload_mesh(m, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err))) return res;
-    if ((res = upload_mesh(&r->proxy, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a, err))) return res;
-    if ((res = upload_mesh(&r->capture_proxy, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a, err))) return res;
+    if ((res = upload_mesh(m, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err)) ||
+        (res = upload_mesh(&r->proxy, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a, err)) ||
+        (res = upload_mesh(&r->capture_proxy, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a, err)))
+        goto fail;
     r->tail_tex = new_texture(TAIL_SIZE, 1, GL_LINEAR);
     r->target_bytes += TAIL_SIZE * 4;
     r->tail_key[0] = -1.0f; /* no table yet */
