@@ -2,7 +2,7 @@
 #include <string.h>
 
 #include "commands.h"
-#include "png_out.h"
+#include "image_out.h"
 #include "session.h"
 
 int jd_cmd_render(int argc, char **argv)

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "commands.h"
-#include "png_out.h"
+#include "image_out.h"
 
 static const char keys_help[] =
     "keys: m mode, n material, l light orbit on/off, [ ] turn the light, + - zoom, s screenshot, q or Esc quit";

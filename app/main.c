@@ -19,6 +19,7 @@ static void usage(FILE *f)
             "  view     an X11 window with the scene, under a device profile if asked\n"
             "  kiosk    fullscreen on DRM/KMS (no desktop), frame statistics at the end\n"
             "  info     print the GL device's limits and usable extensions\n"
+            "  reference render the same scene on the CPU with the full dipole BSSRDF (slow, exact)\n"
             "  metric   compare a picture with a reference in linear light (RMSE, PSNR, SSIM)\n\n"
             "'jade <command> --help' lists a command's options.\n");
 }
@@ -43,6 +44,7 @@ int main(int argc, char **argv)
     if (!strcmp(c, "view")) return jd_cmd_view(argc, argv);
     if (!strcmp(c, "kiosk")) return jd_cmd_kiosk(argc, argv);
     if (!strcmp(c, "metric")) return jd_cmd_metric(argc, argv);
+    if (!strcmp(c, "reference")) return jd_cmd_reference(argc, argv);
     fprintf(stderr, "jade: unknown command '%s' (see jade --help)\n", c);
     return 2;
 }

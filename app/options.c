@@ -23,14 +23,24 @@ typedef struct opt {
 /* R and B also cover the interactive commands where an option makes sense
  * there: the scene, material and device options. */
 #define R (JD_OPT_RENDER | JD_OPT_VIEW | JD_OPT_KIOSK)
+#define S (R | B | JD_OPT_REFERENCE) /* the scene: what the reference shares */
 #define B JD_OPT_BENCH
 #define RO JD_OPT_RENDER
 #define V JD_OPT_VIEW
 #define K JD_OPT_KIOSK
 static const opt table[] = {
-    {"--mesh", T_STR, OFF(mesh), 0, 0, R | B, "FILE.drc   Draco mesh [the default asset]"},
-    {"--out", T_STR, OFF(out), 0, 0, RO, "FILE.png   output image [jade.png]"},
+    {"--mesh", T_STR, OFF(mesh), 0, 0, S, "FILE.drc   Draco mesh [the default asset]"},
+    {"--out", T_STR, OFF(out), 0, 0, RO | JD_OPT_REFERENCE, "FILE.png   output image [jade.png]"},
     {"--sheet", T_STR, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual side by side, labelled"},
+    {"--sheet-reference", T_STR, OFF(sheet_ref), 0, 0, RO, "FILE.png   with --sheet: a reference picture as the first panel"},
+    {"--pfm", T_STR, OFF(pfm), 0, 0, JD_OPT_REFERENCE, "FILE.pfm   also write the linear picture (before the tone curve)"},
+    {"--mask", T_STR, OFF(mask_out), 0, 0, JD_OPT_REFERENCE, "FILE.png   also write the object's pixels (255) for jade metric --mask"},
+    {"--samples", T_INT, OFF(samples), 100, 20000000, JD_OPT_REFERENCE, "N          irradiance samples [one per (0.3 mm)^2, 20,000 to 400,000]"},
+    {"--error", T_FLOAT, OFF(ref_error), 0.001, 10, JD_OPT_REFERENCE, "X          octree error bound: node area / distance^2 [0.05]"},
+    {"--window-mm", T_FLOAT, OFF(window_mm), 0.001, 1000, JD_OPT_REFERENCE, "X          near-field window, integrated exactly [3 sample spacings]"},
+    {"--threads", T_INT, OFF(threads), 1, 256, JD_OPT_REFERENCE, "N          [every core]"},
+    {"--seed", T_INT, OFF(seed), 0, 1000000000, JD_OPT_REFERENCE, "N          sample placement [0]"},
+    {"--quiet", T_FLAG, OFF(quiet), 0, 0, JD_OPT_REFERENCE, "           no progress bar"},
     {"--screenshot", T_STR, OFF(screenshot), 0, 0, V, "FILE.png   write the last frame (with --frames)"},
     {"--platform", T_STR, OFF(platform), 0, 0, K, "P          drm [default], x11 or headless"},
     {"--drm-device", T_STR, OFF(drm_device), 0, 0, K, "PATH       [the first KMS-capable /dev/dri/card*]"},
@@ -38,24 +48,24 @@ static const opt table[] = {
     {"--display-mode", T_STR, OFF(display_mode), 0, 0, K, "WxH[@Hz]   [the preferred mode, else the largest]"},
     {"--atomic", T_FLAG, OFF(atomic), 0, 0, K, "           atomic modesetting (where the driver has it)"},
     {"--rotate", T_INT, OFF(rotation), 0, 270, K | RO, "DEG        0, 90, 180 or 270, counter-clockwise as DRM (portrait panels) [0]"},
-    {"--size", T_SIZE, 0, 16, 4096, RO | V | K | B, "WxH        image or window size (drm: the mode) [512x512]"},
+    {"--size", T_SIZE, 0, 16, 4096, RO | V | K | B | JD_OPT_REFERENCE, "WxH        image or window size (drm: the mode) [512x512]"},
     {"--frames", T_INT, OFF(frames), 1, 100000000, R | B, "N          frames [render 1, bench 200, view/kiosk: until closed]"},
     {"--mode", T_MODE, OFF(mode_list), 0, 0, R | B, "M          none|single|dual [dual]; bench also: all"},
-    {"--material", T_STR, OFF(material), 0, 0, R | B, "NAME       measured material [marble]"},
-    {"--sigma-s", T_FLOAT3, OFF(scene.sigma_s), 0, 1000, R | B, "R,G,B      reduced scattering, mm^-1"},
-    {"--sigma-a", T_FLOAT3, OFF(scene.sigma_a), 0, 1000, R | B, "R,G,B      absorption, mm^-1"},
-    {"--eta", T_FLOAT, OFF(scene.eta), 1.0, 3.0, R | B, "X          refractive index"},
-    {"--density", T_FLOAT, OFF(scene.density), 0.001, 1000, R | B, "X          scales both coefficients [1]"},
-    {"--mm-per-unit", T_FLOAT, OFF(scene.mm_per_unit), 1e-6, 1e9, R | B, "X          scene scale [object 100 mm across]"},
+    {"--material", T_STR, OFF(material), 0, 0, S, "NAME       measured material [marble]"},
+    {"--sigma-s", T_FLOAT3, OFF(scene.sigma_s), 0, 1000, S, "R,G,B      reduced scattering, mm^-1"},
+    {"--sigma-a", T_FLOAT3, OFF(scene.sigma_a), 0, 1000, S, "R,G,B      absorption, mm^-1"},
+    {"--eta", T_FLOAT, OFF(scene.eta), 1.0, 3.0, S, "X          refractive index"},
+    {"--density", T_FLOAT, OFF(scene.density), 0.001, 1000, S, "X          scales both coefficients [1]"},
+    {"--mm-per-unit", T_FLOAT, OFF(scene.mm_per_unit), 1e-6, 1e9, S, "X          scene scale [object 100 mm across]"},
     {"--gain", T_FLOAT, OFF(scene.gain), 0, 100, R | B, "K          gain of the translucent layer [1]"},
-    {"--cam-azimuth", T_FLOAT, OFF(scene.cam_azimuth), -3600, 3600, R | B, "DEG        camera around +Y [15]"},
-    {"--cam-elevation", T_FLOAT, OFF(scene.cam_elevation), -89, 89, R | B, "DEG        camera elevation [35]"},
-    {"--cam-distance", T_FLOAT, OFF(scene.cam_distance), 1.3, 100, R | B, "X          in bounding radii [2.7]"},
-    {"--fov", T_FLOAT, OFF(scene.fov_deg), 5, 150, R | B, "DEG        vertical field of view [35]"},
-    {"--light-azimuth", T_FLOAT, OFF(scene.light_azimuth), -3600, 3600, R | B, "DEG        light around +Y [170: behind]"},
-    {"--light-elevation", T_FLOAT, OFF(scene.light_elevation), -89, 89, R | B, "DEG        light elevation [35]"},
-    {"--light-intensity", T_FLOAT, OFF(scene.light_intensity), 0, 100, R | B, "X          [1]"},
-    {"--exposure", T_FLOAT, OFF(scene.exposure), 0.01, 100, R | B, "X          [1]"},
+    {"--cam-azimuth", T_FLOAT, OFF(scene.cam_azimuth), -3600, 3600, S, "DEG        camera around +Y [15]"},
+    {"--cam-elevation", T_FLOAT, OFF(scene.cam_elevation), -89, 89, S, "DEG        camera elevation [35]"},
+    {"--cam-distance", T_FLOAT, OFF(scene.cam_distance), 1.3, 100, S, "X          in bounding radii [2.7]"},
+    {"--fov", T_FLOAT, OFF(scene.fov_deg), 5, 150, S, "DEG        vertical field of view [35]"},
+    {"--light-azimuth", T_FLOAT, OFF(scene.light_azimuth), -3600, 3600, S, "DEG        light around +Y [170: behind]"},
+    {"--light-elevation", T_FLOAT, OFF(scene.light_elevation), -89, 89, S, "DEG        light elevation [35]"},
+    {"--light-intensity", T_FLOAT, OFF(scene.light_intensity), 0, 100, S, "X          [1]"},
+    {"--exposure", T_FLOAT, OFF(scene.exposure), 0.01, 100, S, "X          [1]"},
     {"--cube-size", T_INT, OFF(rdesc.cube_size), 8, 256, R | B, "N          capture face size, multiple of 8 [64]"},
     {"--light-map", T_INT, OFF(rdesc.light_map_size), 16, 2048, R | B, "N          light depth map size [256]"},
     {"--proxy-cells", T_INT, OFF(rdesc.proxy_cells), 4, 64, R | B, "N          proxy mesh grid [40]"},
@@ -64,11 +74,12 @@ static const opt table[] = {
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
     {"--fragment-thickness", T_FLAG, OFF(rdesc.fragment_thickness), 0, 0, R | B, "           thickness per fragment, not per vertex (coarse meshes)"},
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
-    {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, R | B, "N          memory budget of the core [8]"},
-    {"--decode-timeout-ms", T_INT, OFF(load.timeout_ms), 1, 600000, R | B, "N          refuse a mesh whose decode takes longer [1500]"},
-    {"--max-faces", T_INT, OFF(load.max_faces), 1, 100000000, R | B, "N          refuse meshes with more faces [4000000]"},
+    {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, S, "N          memory budget of the core [8]"},
+    {"--decode-timeout-ms", T_INT, OFF(load.timeout_ms), 1, 600000, S, "N          refuse a mesh whose decode takes longer [1500]"},
+    {"--max-faces", T_INT, OFF(load.max_faces), 1, 100000000, S, "N          refuse meshes with more faces [4000000]"},
 };
 #undef R
+#undef S
 #undef B
 #undef RO
 #undef V
@@ -90,7 +101,7 @@ void jd_options_help(int command, const char *cmdname, const char *summary)
     for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
         if (table[i].commands & command) printf("  %-20s %s\n", table[i].name, table[i].help);
     printf("  %-20s %s\n", "--help", "           this text");
-    if (command & (JD_OPT_RENDER | JD_OPT_BENCH)) {
+    if (command & (JD_OPT_RENDER | JD_OPT_BENCH | JD_OPT_REFERENCE)) {
         printf("\nmaterials:");
         for (int m = 0; m < jd_material_count; m++) printf(" %s", jd_materials[m].name);
         printf("\n");

@@ -15,6 +15,11 @@ typedef struct jd_options {
     const char *profile;      /* device profile to emulate, or NULL */
     const char *platform;     /* headless, x11, drm */
     const char *screenshot;   /* view: PNG written after the last frame */
+    const char *pfm;          /* reference: linear image */
+    const char *mask_out;     /* reference: object mask */
+    const char *sheet_ref;    /* render --sheet: a reference picture shown first */
+    int samples, threads, seed, quiet;
+    float ref_error, window_mm;
     const char *drm_device, *connector, *display_mode;
     int rotation;
     int atomic;
@@ -28,7 +33,7 @@ typedef struct jd_options {
     int has_sigma_s, has_sigma_a, has_eta;
 } jd_options;
 
-enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD_OPT_KIOSK = 16 };
+enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD_OPT_KIOSK = 16, JD_OPT_REFERENCE = 32 };
 
 void jd_options_defaults(jd_options *o);
 /* Parses argv[first..argc); prints a one-line error and returns 0 on bad input.

@@ -33,26 +33,11 @@ int jd_default_asset(char *out, size_t cap)
     return access(out, R_OK) == 0;
 }
 
-int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
+/* The mesh path, the memory budget and the decoded mesh: all a command
+ * needs before any display. */
+static int load_mesh(jd_session *s, jd_options *o, const char *cmd)
 {
-    memset(s, 0, sizeof *s);
-    s->t_start_ms = jd_now_ms();
     jd_error err = {0};
-    if (o->mesh) {
-        snprintf(s->mesh_path, sizeof s->mesh_path, "%s", o->mesh);
-    } else if (!jd_default_asset(s->mesh_path, sizeof s->mesh_path)) {
-        fprintf(stderr, "jade %s: the default asset default.drc is not beside the program or in %s; pass --mesh\n", cmd,
-                JD_ASSET_INSTALL_DIR);
-        return 0;
-    }
-    jd_platform_desc pd = {.kind = o->platform ? o->platform : "headless", .width = o->width, .height = o->height,
-                           .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode,
-                           .atomic = o->atomic};
-    /* No display, no point decoding: say so at once. */
-    if (jd_platform_probe(&pd, &err)) {
-        fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
-        return 0;
-    }
     /* The one allocation of the run: everything the core keeps lives here. */
     size_t budget = (size_t)o->budget_mb << 20;
     s->memory = malloc(budget);
@@ -61,7 +46,6 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
         return 0;
     }
     jd_arena_init(&s->arena, s->memory, budget);
-
     /* Before any GL: the loader forks, and a GL driver may have threads. */
     jd_load_desc ld = o->load;
     ld.path = s->mesh_path;
@@ -70,6 +54,43 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
         fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
         return 0;
     }
+    return 1;
+}
+
+static int mesh_path(jd_session *s, jd_options *o, const char *cmd)
+{
+    if (o->mesh) {
+        snprintf(s->mesh_path, sizeof s->mesh_path, "%s", o->mesh);
+    } else if (!jd_default_asset(s->mesh_path, sizeof s->mesh_path)) {
+        fprintf(stderr, "jade %s: the default asset default.drc is not beside the program or in %s; pass --mesh\n", cmd,
+                JD_ASSET_INSTALL_DIR);
+        return 0;
+    }
+    return 1;
+}
+
+int jd_session_open_mesh(jd_session *s, jd_options *o, const char *cmd)
+{
+    memset(s, 0, sizeof *s);
+    s->t_start_ms = jd_now_ms();
+    return mesh_path(s, o, cmd) && load_mesh(s, o, cmd);
+}
+
+int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
+{
+    memset(s, 0, sizeof *s);
+    s->t_start_ms = jd_now_ms();
+    jd_error err = {0};
+    if (!mesh_path(s, o, cmd)) return 0;
+    jd_platform_desc pd = {.kind = o->platform ? o->platform : "headless", .width = o->width, .height = o->height,
+                           .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode,
+                           .atomic = o->atomic};
+    /* No display, no point decoding: say so at once. */
+    if (jd_platform_probe(&pd, &err)) {
+        fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+        return 0;
+    }
+    if (!load_mesh(s, o, cmd)) return 0;
     if (jd_platform_open(&pd, &s->platform, &err)) {
         fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
         return 0;

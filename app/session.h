@@ -23,6 +23,8 @@ typedef struct jd_session {
 double jd_now_ms(void);
 /* Returns 0 after printing a one-line error. */
 int jd_session_open(jd_session *s, jd_options *o, const char *cmd);
+/* Only the mesh, for commands without a display (the reference). */
+int jd_session_open_mesh(jd_session *s, jd_options *o, const char *cmd);
 void jd_session_close(jd_session *s);
 /* The default asset beside the program (build tree) or installed. */
 int jd_default_asset(char *out, size_t cap);

@@ -51,6 +51,24 @@ expect "metric same" 0 '"ssim": 1.00000' -- "$jade" metric "$tmp/ok.png" "$tmp/o
 expect "metric one picture" 2 "needs two pictures" -- "$jade" metric "$tmp/ok.png"
 expect "metric unreadable" 1 "not a readable PNG" -- "$jade" metric "$tmp/hello.drc" "$tmp/ok.png"
 expect "metric size mismatch" 1 "is 96x64 but" -- "$jade" metric "$tmp/ok.png" "$tmp/sheet.png"
+# The reference: small, so the suite stays fast; the same scene options.
+expect "reference help" 0 "--samples" -- "$jade" reference --help
+expect "reference bad flag" 2 "unknown option '--mode'" -- "$jade" reference --mode dual
+expect "reference bad samples" 2 "expected a whole number" -- "$jade" reference --samples 10
+expect "reference missing mesh" 1 "cannot open" -- "$jade" reference --mesh "$tmp/nope.drc" --out "$tmp/r.png"
+expect "reference non-draco" 1 "not a Draco file" -- "$jade" reference --mesh "$tmp/hello.drc" --out "$tmp/r.png"
+expect "reference unwritable" 1 "cannot write PNG" -- "$jade" reference --size 32x32 --out "$tmp/no/dir/r.png" --quiet
+if [ ! -e "$tmp/r.png" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: a failed reference left r.png"; fi
+expect "reference" 0 "wrote $tmp/ref.png, $tmp/ref.pfm, $tmp/mask.png" -- \
+    "$jade" reference --size 96x64 --out "$tmp/ref.png" --pfm "$tmp/ref.pfm" --mask "$tmp/mask.png" --samples 20000
+if grep -q "reference" "$tmp/err" && [ -s "$tmp/ref.pfm" ]; then pass=$((pass + 1)); echo "ok   reference progress: $(tail -n 1 "$tmp/err")"
+else fail=$((fail + 1)); echo "FAIL: no progress on stderr or no PFM"; fi
+expect "metric against the reference" 0 '"pixels": [1-9]' -- "$jade" metric "$tmp/ok.png" "$tmp/ref.png" --mask "$tmp/mask.png"
+expect "metric against the PFM" 0 '"ssim"' -- "$jade" metric "$tmp/ok.png" "$tmp/ref.pfm" --mask "$tmp/mask.png"
+expect "sheet with reference" 0 "reference | none | single | dual" -- \
+    "$jade" render --size 96x64 --sheet "$tmp/sheet4.png" --sheet-reference "$tmp/ref.png"
+expect "sheet reference wrong size" 1 "not the size" -- \
+    "$jade" render --size 64x64 --sheet "$tmp/sheet5.png" --sheet-reference "$tmp/ref.png"
 t0=$(date +%s%N)
 expect "kiosk without drm" 1 "" -- "$jade" kiosk --drm-device "$tmp/no-card0"
 t1=$(date +%s%N)

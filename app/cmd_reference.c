@@ -1,0 +1,95 @@
+/* jade reference: the scene `jade render` shows, rendered on the CPU with
+ * the physically based dipole, for jade metric to judge jade's modes by. */
+#include <errno.h>
+#include <libgen.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "commands.h"
+#include "image_out.h"
+#include "ref_render.h"
+#include "session.h"
+
+/* A reference takes a minute: find out before it starts that its files
+ * cannot be written. */
+static int can_write(const char *path, const char *kind)
+{
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", path);
+    const char *d = dirname(dir);
+    if (access(d, W_OK) == 0) return 1;
+    fprintf(stderr, "jade reference: %s: cannot write %s: %s\n", path, kind, strerror(errno));
+    return 0;
+}
+
+int jd_cmd_reference(int argc, char **argv)
+{
+    jd_options o;
+    jd_options_defaults(&o);
+    o.out = "reference.png";
+    int rc = jd_options_command(&o, JD_OPT_REFERENCE, "reference",
+                                "Renders the scene of jade render on the CPU with the Jensen et al. 2001 dipole\n"
+                                "BSSRDF (hierarchical, Jensen & Buhler 2002): the ground truth for jade metric.\n"
+                                "The PNG is tone-mapped exactly as jade maps its own output.",
+                                argc, argv);
+    if (rc >= 0) return rc;
+    if (!can_write(o.out, "PNG") || (o.pfm && !can_write(o.pfm, "PFM")) || (o.mask_out && !can_write(o.mask_out, "PNG")))
+        return 1;
+    jd_session s;
+    if (!jd_session_open_mesh(&s, &o, "reference")) { jd_session_close(&s); return 1; }
+
+    jd_ref_desc d = {.mesh = &s.mesh, .scene = o.scene, .width = o.width, .height = o.height,
+                     .samples = (uint32_t)o.samples, .error = o.ref_error, .window_mm = o.window_mm,
+                     .threads = o.threads, .progress = !o.quiet, .seed = (uint32_t)o.seed};
+    size_t n = (size_t)o.width * o.height;
+    float *linear = malloc(n * 3 * sizeof(float));
+    uint8_t *mask = malloc(n), *rgba = malloc(n * 4);
+    jd_ref *ref = NULL;
+    jd_ref_stats st;
+    jd_error err = {0};
+    rc = 1;
+    if (!linear || !mask || !rgba) {
+        fprintf(stderr, "jade reference: out of memory for a %dx%d picture\n", o.width, o.height);
+        goto done;
+    }
+    if (jd_ref_create(&d, &ref, &st, &err) || jd_ref_render(ref, linear, mask, &st, &err)) {
+        fprintf(stderr, "jade reference: %s: %s\n", s.mesh_path, err.msg);
+        goto done;
+    }
+    for (size_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++) rgba[4 * i + c] = jd_ref_display(linear[3 * i + c]);
+        rgba[4 * i + 3] = 255;
+    }
+    if (jd_png_write(o.out, o.width, o.height, rgba, &err) ||
+        (o.pfm && jd_pfm_write(o.pfm, o.width, o.height, linear, &err))) {
+        fprintf(stderr, "jade reference: %s\n", err.msg);
+        goto done;
+    }
+    if (o.mask_out) {
+        for (size_t i = 0; i < n; i++) {
+            rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = mask[i];
+            rgba[4 * i + 3] = 255;
+        }
+        if (jd_png_write(o.mask_out, o.width, o.height, rgba, &err)) {
+            fprintf(stderr, "jade reference: %s\n", err.msg);
+            goto done;
+        }
+    }
+    printf("wrote %s%s%s%s%s (%dx%d, reference, %s, mesh %s: %u triangles)\n", o.out, o.pfm ? ", " : "",
+           o.pfm ? o.pfm : "", o.mask_out ? ", " : "", o.mask_out ? o.mask_out : "", o.width, o.height, o.material,
+           s.mesh_path, s.mesh.num_indices / 3);
+    printf("%u samples (%.3f mm apart over %.0f mm^2), window %.2f mm, %d threads; irradiance %.0f ms, octree "
+           "%.0f ms, pixels %.0f ms (%ld on the object, %.0f kernel evaluations each)\n",
+           st.samples, st.spacing_mm, st.surface_mm2, st.window_mm, st.threads, st.irradiance_ms, st.tree_ms,
+           st.pixels_ms, st.object_pixels, st.evals_per_pixel);
+    rc = 0;
+done:
+    jd_ref_destroy(ref);
+    free(linear);
+    free(mask);
+    free(rgba);
+    jd_session_close(&s);
+    return rc;
+}

@@ -1,0 +1,417 @@
+#define _GNU_SOURCE
+#include "ref_render.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "progress.h"
+#include "ref_bvh.h"
+#include "ref_diffusion.h"
+#include "ref_samples.h"
+#include "vmath.h"
+
+struct jd_ref {
+    jd_ref_desc d;
+    float *pos;          /* normalised world positions */
+    float *nrm;
+    uint32_t *tri;
+    uint32_t num_tris;
+    jd_bvh bvh;
+    jd_ref_point *pts;
+    float *pt_n;         /* outward normal per sample (before the octree reorders pts) */
+    jd_diffusion diff;
+    jd_dipole dp;
+    float mm_per_world, eps;
+    float light[3];
+    float f0, fresnel_norm; /* Schlick F0 and the hemispherical mean of its transmittance */
+    jd_ref_stats st;
+};
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+/* ---- work spread over threads --------------------------------------- */
+
+typedef struct par_job {
+    void (*fn)(void *ctx, long begin, long end, uint64_t *evals);
+    void *ctx;
+    long n, chunk;
+    atomic_long next, done;
+    atomic_ullong evals;
+} par_job;
+
+static void *par_worker(void *arg)
+{
+    par_job *j = arg;
+    uint64_t ev = 0;
+    for (;;) {
+        long b = atomic_fetch_add(&j->next, j->chunk);
+        if (b >= j->n) break;
+        long e = b + j->chunk < j->n ? b + j->chunk : j->n;
+        j->fn(j->ctx, b, e, &ev);
+        atomic_fetch_add(&j->done, e - b);
+    }
+    atomic_fetch_add(&j->evals, ev);
+    return NULL;
+}
+
+static int core_count(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n > 0 ? (int)(n < 256 ? n : 256) : 1;
+}
+
+/* Runs fn over [0, n) in chunks on `threads` threads while the calling
+ * thread draws the progress bar. Returns the evaluations counted. */
+static uint64_t par_run(int threads, long n, long chunk, void (*fn)(void *, long, long, uint64_t *), void *ctx,
+                        const char *label, int progress)
+{
+    par_job j = {.fn = fn, .ctx = ctx, .n = n, .chunk = chunk > 0 ? chunk : 1};
+    atomic_init(&j.next, 0);
+    atomic_init(&j.done, 0);
+    atomic_init(&j.evals, 0);
+    pthread_t tid[256];
+    int started = 0;
+    for (int i = 0; i < threads && i < 256; i++)
+        if (!pthread_create(&tid[i], NULL, par_worker, &j)) started++; else break;
+    jd_progress p;
+    jd_progress_start(&p, label, (double)n, progress);
+    if (!started) {
+        par_worker(&j); /* no threads to be had: do it here */
+    } else {
+        while (atomic_load(&j.done) < n) {
+            struct timespec ts = {0, 50 * 1000 * 1000};
+            nanosleep(&ts, NULL);
+            jd_progress_update(&p, (double)atomic_load(&j.done));
+        }
+        for (int i = 0; i < started; i++) pthread_join(tid[i], NULL);
+    }
+    jd_progress_finish(&p);
+    return atomic_load(&j.evals);
+}
+
+/* ---- geometry ---------------------------------------------------------- */
+
+static void tri_vertices(const jd_ref *r, uint32_t t, const float **a, const float **b, const float **c)
+{
+    *a = r->pos + 3 * (size_t)r->tri[3 * t];
+    *b = r->pos + 3 * (size_t)r->tri[3 * t + 1];
+    *c = r->pos + 3 * (size_t)r->tri[3 * t + 2];
+}
+
+static double tri_area(const float *a, const float *b, const float *c)
+{
+    double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double x = e1[1] * e2[2] - e1[2] * e2[1], y = e1[2] * e2[0] - e1[0] * e2[2], z = e1[0] * e2[1] - e1[1] * e2[0];
+    return 0.5 * sqrt(x * x + y * y + z * z);
+}
+
+static void normalize3(float v[3])
+{
+    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (l > 0) { v[0] /= l; v[1] /= l; v[2] /= l; } else { v[0] = 0; v[1] = 0; v[2] = 1; }
+}
+
+static float dot3(const float a[3], const float b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* Point, interpolated normal and geometric normal at barycentrics (u, v). */
+static void surface_at(const jd_ref *r, uint32_t t, float u, float v, float p[3], float n[3], float ng[3])
+{
+    const float *a, *b, *c;
+    tri_vertices(r, t, &a, &b, &c);
+    const float *na = r->nrm + 3 * (size_t)r->tri[3 * t], *nb = r->nrm + 3 * (size_t)r->tri[3 * t + 1],
+                *nc = r->nrm + 3 * (size_t)r->tri[3 * t + 2];
+    float w = 1 - u - v;
+    for (int k = 0; k < 3; k++) {
+        p[k] = w * a[k] + u * b[k] + v * c[k];
+        n[k] = w * na[k] + u * nb[k] + v * nc[k];
+    }
+    float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    ng[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    ng[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    ng[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    normalize3(ng);
+    if (dot3(ng, n) < 0) for (int k = 0; k < 3; k++) ng[k] = -ng[k];
+    normalize3(n);
+}
+
+/* Schlick transmittance, as jade's shader has it. */
+static float fresnel_t(const jd_ref *r, float cosv)
+{
+    float x = 1.0f - (cosv < 0 ? 0 : cosv > 1 ? 1 : cosv), x2 = x * x;
+    return 1.0f - (r->f0 + (1.0f - r->f0) * x2 * x2 * x);
+}
+
+/* Irradiance entering the surface at p (outward normal n, geometric ng). */
+static void irradiance(const jd_ref *r, const float p[3], const float n[3], const float ng[3], float e[3])
+{
+    if (r->d.irradiance) { r->d.irradiance(r->d.user, p, n, e); return; }
+    const jd_scene *s = &r->d.scene;
+    float amb = s->ambient, direct = 0;
+    float ndl = dot3(n, r->light);
+    if (ndl > 0 && s->light_intensity > 0) {
+        /* Leave on the light's side of the true surface. */
+        float side = dot3(ng, r->light) >= 0 ? 1.0f : -1.0f, o[3];
+        for (int k = 0; k < 3; k++) o[k] = p[k] + side * r->eps * ng[k];
+        if (!jd_bvh_occluded(&r->bvh, o, r->light, 0.0f, 1e30f))
+            direct = s->light_intensity * ndl * fresnel_t(r, ndl) / r->fresnel_norm;
+    }
+    for (int c = 0; c < 3; c++) e[c] = amb + direct;
+}
+
+/* ---- set-up ---------------------------------------------------------- */
+
+
+
+typedef struct irr_ctx { jd_ref *r; } irr_ctx;
+
+static void irr_chunk(void *ctx, long b, long e, uint64_t *evals)
+{
+    jd_ref *r = ((irr_ctx *)ctx)->r;
+    (void)evals;
+    for (long i = b; i < e; i++) {
+        jd_ref_point *p = &r->pts[i];
+        float pw[3], n[3], ng[3], ei[3];
+        for (int k = 0; k < 3; k++) { pw[k] = p->p[k]; n[k] = r->pt_n[6 * i + k]; ng[k] = r->pt_n[6 * i + 3 + k]; }
+        irradiance(r, pw, n, ng, ei);
+        for (int k = 0; k < 3; k++) {
+            p->ea[k] = ei[k] * p->area;
+            p->p[k] = pw[k] * r->mm_per_world; /* the octree works in millimetres */
+        }
+    }
+}
+
+jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *stats, jd_error *err)
+{
+    double t0 = now_ms();
+    *out = NULL;
+    const jd_mesh *m = desc->mesh;
+    if (!m || m->num_indices < 3) return jd_fail(err, JD_ERR_ARG, "the mesh has no triangles");
+    jd_ref *r = calloc(1, sizeof *r);
+    if (!r) return jd_fail(err, JD_ERR_BUDGET, "out of memory");
+    r->d = *desc;
+    jd_scene *s = &r->d.scene;
+    r->num_tris = m->num_indices / 3;
+    r->pos = malloc(sizeof(float) * 3 * m->num_vertices);
+    r->nrm = malloc(sizeof(float) * 3 * m->num_vertices);
+    r->tri = malloc(sizeof(uint32_t) * 3 * (size_t)r->num_tris);
+    if (!r->pos || !r->nrm || !r->tri) { jd_ref_destroy(r); return jd_fail(err, JD_ERR_BUDGET, "out of memory for the mesh"); }
+
+    /* jade's normalisation: centre of the box at the origin, half-diagonal 1. */
+    jd_vec3 c = jd_v3_scale(jd_v3_add(m->bmin, m->bmax), 0.5f);
+    float radius = 0.5f * jd_v3_len(jd_v3_sub(m->bmax, m->bmin));
+    if (!(radius > 0)) radius = 1.0f;
+    for (uint32_t i = 0; i < m->num_vertices; i++) {
+        r->pos[3 * i] = (m->positions[3 * i] - c.x) / radius;
+        r->pos[3 * i + 1] = (m->positions[3 * i + 1] - c.y) / radius;
+        r->pos[3 * i + 2] = (m->positions[3 * i + 2] - c.z) / radius;
+        memcpy(r->nrm + 3 * i, m->normals + 3 * i, 3 * sizeof(float));
+    }
+    for (uint32_t i = 0; i < 3 * r->num_tris; i++) r->tri[i] = jd_mesh_index(m, i);
+    /* Light enters through the outside: turn normals that point in (a mesh
+     * wound clockwise) around. For a closed surface the integral of x.n is
+     * three times the volume, positive when n points out. */
+    double flux = 0;
+    for (uint32_t t = 0; t < r->num_tris; t++) {
+        const float *a, *b, *cc;
+        tri_vertices(r, t, &a, &b, &cc);
+        double area = tri_area(a, b, cc);
+        for (int v = 0; v < 3; v++) {
+            const float *nv = r->nrm + 3 * (size_t)r->tri[3 * t + v];
+            flux += area * (a[0] + b[0] + cc[0]) / 3 * nv[0] + area * (a[1] + b[1] + cc[1]) / 3 * nv[1] +
+                    area * (a[2] + b[2] + cc[2]) / 3 * nv[2];
+        }
+    }
+    if (flux < 0)
+        for (uint32_t i = 0; i < 3 * m->num_vertices; i++) r->nrm[i] = -r->nrm[i];
+    float mm_per_unit = s->mm_per_unit > 0 ? s->mm_per_unit : 100.0f / (2.0f * radius);
+    r->mm_per_world = mm_per_unit * radius;
+    r->eps = 1e-4f;
+    jd_vec3 L = jd_v3_from_angles(s->light_azimuth, s->light_elevation);
+    r->light[0] = L.x; r->light[1] = L.y; r->light[2] = L.z;
+    float eta = s->eta > 0.5f ? s->eta : 1.3f;
+    r->f0 = (eta - 1) / (eta + 1);
+    r->f0 *= r->f0;
+    r->fresnel_norm = (1.0f - r->f0) * 20.0f / 21.0f;
+    jd_dipole_init(&r->dp, s->sigma_s, s->sigma_a, eta, s->density > 0 ? s->density : 1.0f);
+    r->st.mm_per_world = r->mm_per_world;
+    r->st.threads = desc->threads > 0 ? desc->threads : core_count();
+
+    jd_result res = jd_bvh_build(&r->bvh, r->pos, r->tri, r->num_tris, err);
+    if (res) { jd_ref_destroy(r); return res; }
+
+    /* Samples uniform by area, spread evenly (ref_samples.h). */
+    double total = 0;
+    for (uint32_t t = 0; t < r->num_tris; t++) {
+        const float *a, *b, *cc;
+        tri_vertices(r, t, &a, &b, &cc);
+        total += tri_area(a, b, cc);
+    }
+    if (!(total > 0)) { jd_ref_destroy(r); return jd_fail(err, JD_ERR_ARG, "the mesh has no area"); }
+    double mm2 = (double)r->mm_per_world * r->mm_per_world;
+    r->st.surface_mm2 = total * mm2;
+    uint32_t n = desc->samples;
+    if (!n) {
+        double want = r->st.surface_mm2 / (0.3 * 0.3);
+        n = (uint32_t)(want < 20000 ? 20000 : want > 400000 ? 400000 : want);
+    }
+    jd_surface_point *sp = NULL;
+    res = jd_surface_samples(r->pos, r->tri, r->num_tris, n, desc->seed, &sp, &n, err);
+    if (res) { jd_ref_destroy(r); return res; }
+    r->pts = malloc(sizeof *r->pts * (n ? n : 1));
+    r->pt_n = malloc(sizeof(float) * 6 * (n ? n : 1));
+    if (!r->pts || !r->pt_n) {
+        free(sp);
+        jd_ref_destroy(r);
+        return jd_fail(err, JD_ERR_BUDGET, "out of memory for %u irradiance samples", n);
+    }
+    double area_mm2 = total / (n ? n : 1) * mm2;
+    for (uint32_t k = 0; k < n; k++) {
+        float p[3], nn[3], ng[3];
+        surface_at(r, sp[k].tri, sp[k].u, sp[k].v, p, nn, ng);
+        memcpy(r->pts[k].p, p, sizeof p);
+        memcpy(r->pt_n + 6 * k, nn, sizeof nn);
+        memcpy(r->pt_n + 6 * k + 3, ng, sizeof ng);
+        r->pts[k].area = (float)area_mm2;
+    }
+    free(sp);
+    r->st.samples = n;
+    r->st.spacing_mm = sqrt(area_mm2);
+    r->st.window_mm = desc->window_mm > 0 ? desc->window_mm : fmax(2.5, 3.0 * r->st.spacing_mm);
+    r->st.setup_ms = now_ms() - t0;
+
+    double t1 = now_ms();
+    irr_ctx ic = {r};
+    par_run(r->st.threads, n, 2048, irr_chunk, &ic, "irradiance", desc->progress);
+    r->st.irradiance_ms = now_ms() - t1;
+
+    double t2 = now_ms();
+    res = jd_diffusion_build(&r->diff, r->pts, n, &r->dp, (float)r->st.window_mm,
+                             desc->error > 0 ? desc->error : 0.01f, err);
+    if (res) { jd_ref_destroy(r); return res; }
+    r->st.tree_ms = now_ms() - t2;
+    if (stats) *stats = r->st;
+    *out = r;
+    return JD_OK;
+}
+
+void jd_ref_destroy(jd_ref *r)
+{
+    if (!r) return;
+    jd_diffusion_free(&r->diff);
+    jd_bvh_free(&r->bvh);
+    free(r->pos); free(r->nrm); free(r->tri); free(r->pts); free(r->pt_n);
+    free(r);
+}
+
+void jd_ref_exitance(const jd_ref *r, const float p[3], const float n[3], float out[3])
+{
+    float e[3], ng[3] = {n[0], n[1], n[2]}, x[3];
+    irradiance(r, p, n, ng, e);
+    for (int k = 0; k < 3; k++) x[k] = p[k] * r->mm_per_world;
+    jd_diffusion_exitance(&r->diff, x, e, out);
+}
+
+uint8_t jd_ref_display(float c)
+{
+    if (!(c > 0)) return 0;
+    float y = c / (1.0f + 0.15f * c);
+    if (y > 1) y = 1;
+    return (uint8_t)(sqrtf(y) * 255.0f + 0.5f);
+}
+
+/* ---- the picture -------------------------------------------------------- */
+
+typedef struct px_ctx {
+    jd_ref *r;
+    float *linear;
+    uint8_t *mask;
+    float eye[3], fwd[3], right[3], up[3];
+    float tan_half, aspect;
+} px_ctx;
+
+static void px_rows(void *ctx, long b, long e, uint64_t *evals)
+{
+    px_ctx *c = ctx;
+    jd_ref *r = c->r;
+    const jd_scene *s = &r->d.scene;
+    int w = r->d.width, h = r->d.height;
+    float shin = s->shininess > 1 ? s->shininess : 1, expo = s->exposure > 0 ? s->exposure : 1;
+    float bg[3];
+    for (int k = 0; k < 3; k++) bg[k] = s->background[k] / (1.0f - 0.15f * s->background[k]);
+    for (long y = b; y < e; y++) {
+        for (int x = 0; x < w; x++) {
+            float *o = c->linear + 3 * ((size_t)y * w + x);
+            float sx = (2.0f * (x + 0.5f) / w - 1.0f) * c->tan_half * c->aspect;
+            float sy = (1.0f - 2.0f * (y + 0.5f) / h) * c->tan_half;
+            float dir[3];
+            for (int k = 0; k < 3; k++) dir[k] = c->fwd[k] + sx * c->right[k] + sy * c->up[k];
+            normalize3(dir);
+            jd_hit hit;
+            if (!jd_bvh_intersect(&r->bvh, c->eye, dir, 0.0f, 1e30f, &hit)) {
+                memcpy(o, bg, sizeof bg);
+                if (c->mask) c->mask[(size_t)y * w + x] = 0;
+                continue;
+            }
+            float p[3], n[3], ng[3], ev[3], xm[3], mo[3];
+            surface_at(r, hit.tri, hit.u, hit.v, p, n, ng);
+            irradiance(r, p, n, ng, ev);
+            for (int k = 0; k < 3; k++) xm[k] = p[k] * r->mm_per_world;
+            *evals += jd_diffusion_exitance(&r->diff, xm, ev, mo);
+            /* Seen from the camera's side, as jade's shader does. */
+            float v[3] = {-dir[0], -dir[1], -dir[2]}, nv[3];
+            float sgn = dot3(n, v) < 0 ? -1.0f : 1.0f;
+            for (int k = 0; k < 3; k++) nv[k] = sgn * n[k];
+            float ft = fresnel_t(r, dot3(nv, v)) / r->fresnel_norm;
+            float ndl = fmaxf(dot3(nv, r->light), 0.0f), hv[3];
+            for (int k = 0; k < 3; k++) hv[k] = r->light[k] + v[k];
+            normalize3(hv);
+            float spec = ndl > 0 ? s->specular * powf(fmaxf(dot3(nv, hv), 0.0f), shin) * s->light_intensity : 0.0f;
+            for (int k = 0; k < 3; k++) o[k] = (ft * mo[k] + spec) * expo;
+            if (c->mask) c->mask[(size_t)y * w + x] = 255;
+        }
+    }
+}
+
+jd_result jd_ref_render(jd_ref *r, float *linear, uint8_t *mask, jd_ref_stats *stats, jd_error *err)
+{
+    const jd_scene *s = &r->d.scene;
+    int w = r->d.width, h = r->d.height;
+    if (w < 1 || h < 1) return jd_fail(err, JD_ERR_ARG, "image size %dx%d", w, h);
+    px_ctx c = {.r = r, .linear = linear, .mask = mask};
+    float dist = s->cam_distance > 0 ? s->cam_distance : 2.7f, fov = s->fov_deg > 1 ? s->fov_deg : 35.0f;
+    /* jd_m4_look_at and jd_m4_perspective, as rays. */
+    jd_vec3 eye = jd_v3_scale(jd_v3_from_angles(s->cam_azimuth, s->cam_elevation), dist);
+    jd_vec3 f = jd_v3_norm(jd_v3_sub(jd_v3(0, 0, 0), eye));
+    jd_vec3 rt = jd_v3_norm(jd_v3_cross(f, jd_v3(0, 1, 0)));
+    jd_vec3 up = jd_v3_cross(rt, f);
+    c.eye[0] = eye.x; c.eye[1] = eye.y; c.eye[2] = eye.z;
+    c.fwd[0] = f.x; c.fwd[1] = f.y; c.fwd[2] = f.z;
+    c.right[0] = rt.x; c.right[1] = rt.y; c.right[2] = rt.z;
+    c.up[0] = up.x; c.up[1] = up.y; c.up[2] = up.z;
+    c.tan_half = tanf(fov * 3.14159265f / 360.0f);
+    c.aspect = (float)w / (float)h;
+    double t0 = now_ms();
+    uint64_t ev = par_run(r->st.threads, h, 1, px_rows, &c, "reference", r->d.progress);
+    r->st.pixels_ms = now_ms() - t0;
+    long obj = 0;
+    if (mask)
+        for (long i = 0; i < (long)w * h; i++) obj += mask[i] != 0;
+    r->st.object_pixels = obj;
+    r->st.evals_per_pixel = obj ? (double)ev / obj : 0;
+    for (long i = 0; i < 3L * w * h; i++)
+        if (!isfinite(linear[i]) || linear[i] < 0)
+            return jd_fail(err, JD_ERR_ARG, "pixel %ld came out %g: the scene's numbers are out of range", i / 3,
+                           (double)linear[i]);
+    if (stats) *stats = r->st;
+    return JD_OK;
+}

@@ -1,0 +1,60 @@
+/* jade's ground truth: the scene of `jade render` rendered on the CPU with
+ * the Jensen et al. 2001 dipole BSSRDF, summed hierarchically (ref_diffusion.h).
+ *
+ * Conventions shared with jade's composite, so only the subsurface part
+ * differs: the object normalised to its bounding box (centre at the origin,
+ * half-diagonal 1), the same camera, directional light, ambient term,
+ * Blinn-Phong specular and tone curve. Where jade has Rd_total (ambient +
+ * N.L) + its translucent layers, the reference has
+ *
+ *   L(xo) = Ft(wo)/c * Mo(xo),   Mo(xo) = sum_i Rd(|x_i - xo|) E_i A_i
+ *   E_i   = ambient + I max(N.L, 0) Ft(wi)/c * visible(x_i -> light)
+ *
+ * with Ft Schlick's transmittance (jade's) and c its hemispherical average
+ * (1 - F0) 20/21, so that a flat slab under uniform light shows exactly
+ * Rd_total: jade's own albedo. */
+#ifndef JD_REF_RENDER_H
+#define JD_REF_RENDER_H
+
+#include <stdint.h>
+#include "mesh.h"
+#include "renderer.h"
+
+typedef struct jd_ref_desc {
+    const jd_mesh *mesh;
+    jd_scene scene;          /* camera, light, material, scale, exposure: as jade render */
+    int width, height;
+    uint32_t samples;        /* [0: one per (0.3 mm)^2 of surface, 20,000 to 400,000] */
+    float error;             /* [0.05] octree: largest node area / distance^2 summed as one */
+    float window_mm;         /* [0: 3 sample spacings] near-field window r0 */
+    int threads;             /* [0: every core] */
+    int progress;            /* a live progress bar on stderr */
+    uint32_t seed;           /* sample placement */
+    /* Tests: replaces the light's irradiance (world position, outward normal). */
+    void (*irradiance)(void *user, const float p[3], const float n[3], float e[3]);
+    void *user;
+} jd_ref_desc;
+
+typedef struct jd_ref_stats {
+    uint32_t samples;
+    double spacing_mm, window_mm, surface_mm2, mm_per_world;
+    double setup_ms, irradiance_ms, tree_ms, pixels_ms;
+    double evals_per_pixel;
+    long object_pixels;
+    int threads;
+} jd_ref_stats;
+
+typedef struct jd_ref jd_ref;
+
+/* BVH, samples, their irradiance and the octree. */
+jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *stats, jd_error *err);
+void jd_ref_destroy(jd_ref *r);
+/* Mo at a world point with outward normal n (no Fresnel, no specular). */
+void jd_ref_exitance(const jd_ref *r, const float p[3], const float n[3], float out[3]);
+/* The picture: linear colour (w*h*3, top row first, exposure applied, before
+ * the tone curve) and a mask (255 where the object is). */
+jd_result jd_ref_render(jd_ref *r, float *linear, uint8_t *mask, jd_ref_stats *stats, jd_error *err);
+/* jade's display encoding of a linear value: sqrt(c / (1 + 0.15 c)), 8 bits. */
+uint8_t jd_ref_display(float c);
+
+#endif

@@ -1,0 +1,280 @@
+/* Is the reference right? Checks of `jade reference` against the dipole's
+ * own closed forms, and of its convergence:
+ *   1. a flat slab under uniform light: exitance = total diffuse reflectance
+ *      Rd (Jensen et al. 2001) within 1%, for marble, skin1 and ketchup;
+ *   2. a narrow beam on a large flat patch: the exitance around it follows
+ *      the profile Rd(r) (the beam convolved with Rd, integrated finely);
+ *   3. doubling the samples, and tightening the octree's error bound, change
+ *      the picture by less than the stated tolerances;
+ *   4. every pixel finite and non-negative.
+ * Usage: test_reference ASSET.drc (the project's default asset). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "mesh_load.h"
+#include "ref_render.h"
+
+#define HALF_MM 50.0f /* the patch: 100 mm square; marble's tail beyond 50 mm is 1e-4 of Rd */
+#define CELLS 100
+
+static float slab_pos[(CELLS + 1) * (CELLS + 1) * 3], slab_nrm[(CELLS + 1) * (CELLS + 1) * 3];
+static uint32_t slab_idx[CELLS * CELLS * 6];
+
+static void make_slab(jd_mesh *m)
+{
+    int k = 0;
+    for (int j = 0; j <= CELLS; j++)
+        for (int i = 0; i <= CELLS; i++, k++) {
+            slab_pos[3 * k] = -HALF_MM + 2 * HALF_MM * i / CELLS;
+            slab_pos[3 * k + 1] = -HALF_MM + 2 * HALF_MM * j / CELLS;
+            slab_pos[3 * k + 2] = 0;
+            slab_nrm[3 * k] = 0; slab_nrm[3 * k + 1] = 0; slab_nrm[3 * k + 2] = 1;
+        }
+    k = 0;
+    for (int j = 0; j < CELLS; j++)
+        for (int i = 0; i < CELLS; i++) {
+            uint32_t a = j * (CELLS + 1) + i, b = a + 1, c = a + CELLS + 1, d = c + 1;
+            uint32_t q[6] = {a, b, d, a, d, c};
+            memcpy(slab_idx + k, q, sizeof q);
+            k += 6;
+        }
+    memset(m, 0, sizeof *m);
+    m->num_vertices = (CELLS + 1) * (CELLS + 1);
+    m->num_indices = CELLS * CELLS * 6;
+    m->positions = slab_pos;
+    m->normals = slab_nrm;
+    m->indices = slab_idx;
+    m->index_size = 4;
+    jd_mesh_compute_bounds(m);
+}
+
+/* The patch's world units: jade normalises to half-diagonal 1. */
+static const float MM_PER_WORLD = 70.710678f; /* HALF_MM * sqrt(2) */
+
+static void uniform_light(void *user, const float p[3], const float n[3], float e[3])
+{
+    (void)user; (void)p; (void)n;
+    e[0] = e[1] = e[2] = 1.0f;
+}
+
+/* A Gaussian beam (a laser's profile) of width beam_mm: smooth, so what is
+ * measured is the diffusion sum, not how many samples a sharp edge caught. */
+static float beam_mm;
+static void beam_light(void *user, const float p[3], const float n[3], float e[3])
+{
+    (void)user; (void)n;
+    float x = p[0] * MM_PER_WORLD, y = p[1] * MM_PER_WORLD;
+    e[0] = e[1] = e[2] = expf(-(x * x + y * y) / (2 * beam_mm * beam_mm));
+}
+
+static jd_ref *slab_ref(const jd_mesh *m, const char *material, void (*light)(void *, const float *, const float *, float *))
+{
+    const jd_material *mat = jd_material_find(material);
+    jd_ref_desc d = {.mesh = m, .width = 1, .height = 1, .irradiance = light};
+    jd_scene_defaults(&d.scene, mat);
+    d.scene.mm_per_unit = 1.0f;
+    jd_ref *r = NULL;
+    jd_error err = {0};
+    jd_ref_stats st;
+    if (jd_ref_create(&d, &r, &st, &err)) {
+        printf("jd_ref_create: %s\n", err.msg);
+        return NULL;
+    }
+    printf("  %s: %u samples, %.3f mm apart, window %.2f mm\n", material, st.samples, st.spacing_mm, st.window_mm);
+    return r;
+}
+
+static void test_slab(const jd_mesh *m, const char *material)
+{
+    jd_ref *r = slab_ref(m, material, uniform_light);
+    CHECK(r != NULL, "reference for %s", material);
+    if (!r) return;
+    const jd_material *mat = jd_material_find(material);
+    jd_dipole dp;
+    jd_dipole_init(&dp, mat->sigma_s, mat->sigma_a, mat->eta, 1.0f);
+    /* Points away from the centre too: the answer must not depend on where
+     * the samples happen to fall. */
+    const float at[][2] = {{0, 0}, {3.3f, -1.7f}, {-12.5f, 7.1f}, {20.2f, 15.9f}, {-0.37f, 0.81f}};
+    double worst = 0;
+    for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+        float p[3] = {at[i][0] / MM_PER_WORLD, at[i][1] / MM_PER_WORLD, 0}, n[3] = {0, 0, 1}, mo[3];
+        jd_ref_exitance(r, p, n, mo);
+        for (int c = 0; c < 3; c++) {
+            double want = dp.rd_total[c];
+            /* Ketchup's blue reflects 0.0003: judge such channels absolutely. */
+            double e = want > 0.01 ? fabs(mo[c] - want) / want : fabs(mo[c] - want) / 0.01;
+            if (e > worst) worst = e;
+            printf("  %s at (%5.1f, %5.1f) mm, channel %d: exitance %.5f, Rd total %.5f\n", material, at[i][0], at[i][1], c,
+                   mo[c], want);
+        }
+    }
+    printf("  %s slab: largest relative error %.3f%%\n", material, worst * 100);
+    CHECK(worst < 0.01, "slab of %s: exitance within 1%% of Rd total (largest error %.3f%%)", material, worst * 100);
+    jd_ref_destroy(r);
+}
+
+/* The beam (Gaussian, width b) convolved with Rd, at distance x from its
+ * centre: polar integration out to 6 b, fine enough to be exact here. */
+static double beam_profile(const jd_dipole *dp, int c, double x, double b)
+{
+    const int nr = 600, na = 360;
+    double sum = 0, rmax = 6 * b;
+    for (int i = 0; i < nr; i++) {
+        double rr = (i + 0.5) * rmax / nr, g = exp(-rr * rr / (2 * b * b));
+        for (int j = 0; j < na; j++) {
+            double a = (j + 0.5) * 2 * M_PI / na;
+            double dx = x - rr * cos(a), dy = rr * sin(a);
+            sum += jd_dipole_rd(dp, c, sqrt(dx * dx + dy * dy)) * g * rr;
+        }
+    }
+    return sum * (rmax / nr) * (2 * M_PI / na);
+}
+
+static void test_profile(const jd_mesh *m, const char *material)
+{
+    beam_mm = 1.0f;
+    jd_ref *r = slab_ref(m, material, beam_light);
+    CHECK(r != NULL, "reference for %s", material);
+    if (!r) return;
+    const jd_material *mat = jd_material_find(material);
+    jd_dipole dp;
+    jd_dipole_init(&dp, mat->sigma_s, mat->sigma_a, mat->eta, 1.0f);
+    double worst = 0, worst_r = 0;
+    int compared = 0;
+    printf("  %s profile, r mm: reference / (beam * Rd), red green blue\n", material);
+    for (double x = 4.0; x <= 45.0; x *= 1.25) {
+        /* Four directions around the beam, averaged: the sampling's
+         * graininess is not what is being tested. */
+        double mo_avg[3] = {0, 0, 0};
+        for (int k = 0; k < 4; k++) {
+            double a = k * M_PI / 2 + 0.3;
+            float p[3] = {(float)(x * cos(a)) / MM_PER_WORLD, (float)(x * sin(a)) / MM_PER_WORLD, 0}, n[3] = {0, 0, 1},
+                  mo[3];
+            jd_ref_exitance(r, p, n, mo);
+            for (int c = 0; c < 3; c++) mo_avg[c] += mo[c] / 4;
+        }
+        printf("    %5.1f", x);
+        for (int c = 0; c < 3; c++) {
+            double want = beam_profile(&dp, c, x, beam_mm);
+            /* Where the profile has fallen below a millionth of the beam's
+             * power, float round-off is all there is to compare. */
+            if (want < 1e-7 * 2 * M_PI * beam_mm * beam_mm) { printf("      -"); continue; }
+            double e = fabs(mo_avg[c] / want - 1);
+            printf("  %.4f", mo_avg[c] / want);
+            compared++;
+            if (e > worst) { worst = e; worst_r = x; }
+        }
+        printf("\n");
+    }
+    printf("  %s profile: %d comparisons, largest relative error %.2f%% (at %.1f mm)\n", material, compared,
+           worst * 100, worst_r);
+    CHECK(compared >= 6 && worst < 0.02, "profile of %s follows Rd(r) within 2%% (largest %.2f%% at %.1f mm)",
+          material, worst * 100, worst_r);
+    jd_ref_destroy(r);
+}
+
+typedef struct picture { float *px; uint8_t *mask; } picture;
+
+static int render(const jd_mesh *m, const char *material, float light_az, uint32_t samples, float error, uint32_t seed,
+                  picture *out, jd_ref_stats *st)
+{
+    enum { S = 64 };
+    jd_ref_desc d = {.mesh = m, .width = S, .height = S, .samples = samples, .error = error, .seed = seed};
+    jd_scene_defaults(&d.scene, jd_material_find(material));
+    d.scene.light_azimuth = light_az;
+    out->px = malloc(sizeof(float) * 3 * S * S);
+    out->mask = malloc(S * S);
+    jd_ref *r = NULL;
+    jd_error err = {0};
+    if (jd_ref_create(&d, &r, st, &err) || jd_ref_render(r, out->px, out->mask, st, &err)) {
+        printf("reference: %s\n", err.msg);
+        jd_ref_destroy(r);
+        return 0;
+    }
+    jd_ref_destroy(r);
+    return 1;
+}
+
+/* RMSE over the object relative to its mean. */
+static double rel_rmse(const picture *a, const picture *b, int n)
+{
+    double se = 0, sum = 0;
+    long cnt = 0;
+    for (int i = 0; i < n; i++) {
+        if (!a->mask[i]) continue;
+        for (int c = 0; c < 3; c++) {
+            double d = a->px[3 * i + c] - b->px[3 * i + c];
+            se += d * d;
+            sum += b->px[3 * i + c];
+        }
+        cnt += 3;
+    }
+    return cnt ? sqrt(se / cnt) / (sum / cnt) : 1e9;
+}
+
+static void test_convergence(const jd_mesh *m)
+{
+    const int n = 64 * 64;
+    const char *mats[] = {"marble", "skin1"};
+    for (int k = 0; k < 2; k++) {
+        picture base, dbl, tight, reseed;
+        jd_ref_stats st;
+        if (!render(m, mats[k], 170, 0, 0, 0, &base, &st)) { CHECK(0, "render"); return; }
+        uint32_t ns = st.samples;
+        int ok = render(m, mats[k], 170, 2 * ns, 0, 0, &dbl, &st) && render(m, mats[k], 170, 0, 0.0025f, 0, &tight, &st) &&
+                 render(m, mats[k], 170, 0, 0, 7, &reseed, &st);
+        CHECK(ok, "renders");
+        if (!ok) return;
+        long bad = 0, obj = 0;
+        for (int i = 0; i < n; i++) {
+            obj += base.mask[i] != 0;
+            for (int c = 0; c < 3; c++)
+                if (!isfinite(base.px[3 * i + c]) || base.px[3 * i + c] < 0) bad++;
+        }
+        double e_samples = rel_rmse(&base, &dbl, n), e_error = rel_rmse(&base, &tight, n),
+               e_seed = rel_rmse(&base, &reseed, n);
+        printf("  %s, 64x64, %ld object pixels: %u -> %u samples changes the picture by %.3f%% (RMSE / mean); "
+               "error bound 0.01 -> 0.0025: %.3f%%; another sample placement: %.3f%%\n",
+               mats[k], obj, ns, 2 * ns, e_samples * 100, e_error * 100, e_seed * 100);
+        CHECK(bad == 0 && obj > 500, "every pixel finite and non-negative (%ld bad), the object seen (%ld px)", bad, obj);
+        CHECK(e_samples < 0.02, "doubling the samples changes %s by under 2%% (%.3f%%)", mats[k], e_samples * 100);
+        CHECK(e_error < 0.005, "a 4x tighter octree bound changes %s by under 0.5%% (%.3f%%)", mats[k], e_error * 100);
+        CHECK(e_seed < 0.02, "another sample placement changes %s by under 2%% (%.3f%%)", mats[k], e_seed * 100);
+        free(base.px); free(base.mask); free(dbl.px); free(dbl.mask);
+        free(tight.px); free(tight.mask); free(reseed.px); free(reseed.mask);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    jd_mesh slab;
+    make_slab(&slab);
+    printf("slab under uniform light (100 mm square):\n");
+    test_slab(&slab, "marble");
+    test_slab(&slab, "skin1");
+    test_slab(&slab, "ketchup");
+    printf("Gaussian beam of 1 mm width on the same patch:\n");
+    test_profile(&slab, "marble");
+    test_profile(&slab, "skin1");
+    test_profile(&slab, "ketchup");
+
+    if (argc > 1) {
+        static unsigned char mem[16 << 20];
+        jd_arena a;
+        jd_arena_init(&a, mem, sizeof mem);
+        jd_load_desc ld = {.path = argv[1], .allow_32bit_indices = 1};
+        jd_mesh m;
+        jd_load_stats ls;
+        jd_error err = {0};
+        if (jd_mesh_load_draco(&ld, &a, &m, &ls, &err)) {
+            CHECK(0, "load %s: %s", argv[1], err.msg);
+        } else {
+            printf("convergence on %s (%u triangles), back-lit:\n", argv[1], m.num_indices / 3);
+            test_convergence(&m);
+        }
+    }
+    return jd_check_summary("reference");
+}
