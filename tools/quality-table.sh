@@ -1,0 +1,74 @@
+#!/bin/sh
+# The quality table: how far jade's none, single and dual modes are from the
+# CPU reference (the full dipole BSSRDF), for the bunny in marble, skin1,
+# ketchup and whole milk, front-lit and back-lit. Long (a reference per case):
+# run on demand, not by the tests.
+#
+#   tools/quality-table.sh [OUT_DIR]      (SIZE=512x512, BUILD=build by default)
+#   cmake --build build --target quality  (the same, into build/quality)
+#
+# Writes OUT_DIR/table.md (the metrics of `jade metric`, each mode against
+# the reference over the object's pixels) and a contact sheet per material
+# and light: reference | none | single | dual.
+set -eu
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${BUILD:-$root/build}
+out=${1:-$build/quality}
+size=${SIZE:-512x512}
+jade=$build/jade
+bunny=$build/testdata/bunny.drc
+[ -x "$jade" ] || { echo "quality-table: $jade is not built (run tools/quickstart.sh or cmake --build build)" >&2; exit 1; }
+sh "$root/tests/encode_bunny.sh" "$root/../shared" "$bunny" || { echo "quality-table: needs the bunny from ../shared" >&2; exit 1; }
+mkdir -p "$out"
+
+# front: the light 45 degrees to the camera's left and above; back: behind.
+lights="front:-30:40 back:170:35"
+materials="marble skin1 ketchup wholemilk"
+table=$out/table.md
+field() { sed -n "s/.*\"$1\": \([-0-9.e]*\).*/\1/p"; }
+
+{
+    echo "| material | light | mode | RMSE | PSNR dB | SSIM | best k | RMSE at k | SSIM at k |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+} > "$table.tmp"
+verdicts=""
+for mat in $materials; do
+    for l in $lights; do
+        name=${l%%:*}; rest=${l#*:}; az=${rest%%:*}; el=${rest#*:}
+        scene="--mesh $bunny --size $size --material $mat --light-azimuth $az --light-elevation $el"
+        base=$out/${mat}_$name
+        echo "== $mat, $name-lit" >&2
+        # shellcheck disable=SC2086
+        "$jade" reference $scene --out "$base.reference.png" --pfm "$base.reference.pfm" --mask "$base.mask.png" --quiet >&2
+        rmse_of=""
+        for mode in none single dual; do
+            # shellcheck disable=SC2086
+            "$jade" render $scene --mode $mode --out "$base.$mode.png" >/dev/null
+            m=$("$jade" metric "$base.$mode.png" "$base.reference.png" --mask "$base.mask.png")
+            echo "$m" > "$base.$mode.json"
+            rmse=$(echo "$m" | field rmse); psnr=$(echo "$m" | field psnr_db); ssim=$(echo "$m" | field ssim)
+            k=$(echo "$m" | field best_scale); rk=$(echo "$m" | field rmse_scaled); sk=$(echo "$m" | field ssim_scaled)
+            printf '| %s | %s | %s | %.4f | %.2f | %.4f | %.3f | %.4f | %.4f |\n' \
+                "$mat" "$name" "$mode" "$rmse" "$psnr" "$ssim" "$k" "$rk" "$sk" >> "$table.tmp"
+            rmse_of="$rmse_of $rmse:$rk"
+        done
+        # shellcheck disable=SC2086
+        "$jade" render $scene --sheet "$out/sheet_${mat}_$name.png" --sheet-reference "$base.reference.png" >/dev/null
+        # The paper's claims, per case: single closer than none, dual closer than single.
+        verdicts="$verdicts$(echo "$rmse_of" | awk -v c="$mat, $name-lit" '
+            function v(x) { return x ? "yes" : "**no**" }
+            { split($1, n, ":"); split($2, s, ":"); split($3, d, ":");
+              printf "| %s | %s | %s | %s | %s |\n", c, v(s[1] < n[1]), v(d[1] < s[1]), v(s[2] < n[2]), v(d[2] < s[2]) }')
+"
+    done
+done
+{
+    cat "$table.tmp"
+    echo
+    echo "| case | single closer than none | dual closer than single | single closer than none, at best k | dual closer than single, at best k |"
+    echo "|---|---|---|---|---|"
+    printf '%s' "$verdicts"
+} > "$table"
+rm -f "$table.tmp"
+cat "$table"
+echo "wrote $table and the sheets in $out" >&2
