@@ -35,7 +35,7 @@ static const opt table[] = {
     {"--sheet-reference", T_STR, OFF(sheet_ref), 0, 0, RO, "FILE.png   with --sheet: a reference picture as the first panel"},
     {"--pfm", T_STR, OFF(pfm), 0, 0, JD_OPT_REFERENCE, "FILE.pfm   also write the linear picture (before the tone curve)"},
     {"--mask", T_STR, OFF(mask_out), 0, 0, JD_OPT_REFERENCE, "FILE.png   also write the object's pixels (255) for jade metric --mask"},
-    {"--samples", T_INT, OFF(samples), 100, 20000000, JD_OPT_REFERENCE, "N          irradiance samples [one per (0.3 mm)^2, 20,000 to 400,000]"},
+    {"--samples", T_INT, OFF(samples), 100, 4000000, JD_OPT_REFERENCE, "N          irradiance samples [one per (0.3 mm)^2, 20,000 to 400,000]"},
     {"--error", T_FLOAT, OFF(ref_error), 0.001, 10, JD_OPT_REFERENCE, "X          octree error bound: node area / distance^2 [0.05]"},
     {"--window-mm", T_FLOAT, OFF(window_mm), 0.001, 1000, JD_OPT_REFERENCE, "X          near-field window, integrated exactly [3 sample spacings]"},
     {"--threads", T_INT, OFF(threads), 1, 256, JD_OPT_REFERENCE, "N          [every core]"},
