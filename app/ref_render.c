@@ -26,6 +26,7 @@ struct jd_ref {
     float *pt_n;         /* outward normal per sample (before the octree reorders pts) */
     jd_diffusion diff;
     jd_dipole dp;
+    jd_scene_view view;
     float mm_per_world, eps;
     float light[3];
     float f0, fresnel_norm; /* Schlick F0 and the hemispherical mean of its transmittance */
@@ -206,10 +207,10 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     r->tri = malloc(sizeof(uint32_t) * 3 * (size_t)r->num_tris);
     if (!r->pos || !r->nrm || !r->tri) { jd_ref_destroy(r); return jd_fail(err, JD_ERR_BUDGET, "out of memory for the mesh"); }
 
-    /* jade's normalisation: centre of the box at the origin, half-diagonal 1. */
-    jd_vec3 c = jd_v3_scale(jd_v3_add(m->bmin, m->bmax), 0.5f);
-    float radius = 0.5f * jd_v3_len(jd_v3_sub(m->bmax, m->bmin));
-    if (!(radius > 0)) radius = 1.0f;
+    /* jade's world, camera, light and Fresnel: the renderer's own. */
+    jd_scene_view_of(s, m, &r->view);
+    jd_vec3 c = r->view.centre;
+    float radius = r->view.radius;
     for (uint32_t i = 0; i < m->num_vertices; i++) {
         r->pos[3 * i] = (m->positions[3 * i] - c.x) / radius;
         r->pos[3 * i + 1] = (m->positions[3 * i + 1] - c.y) / radius;
@@ -233,16 +234,13 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     }
     if (flux < 0)
         for (uint32_t i = 0; i < 3 * m->num_vertices; i++) r->nrm[i] = -r->nrm[i];
-    float mm_per_unit = s->mm_per_unit > 0 ? s->mm_per_unit : 100.0f / (2.0f * radius);
-    r->mm_per_world = mm_per_unit * radius;
+    r->mm_per_world = r->view.mm_per_world;
     r->eps = 1e-4f;
-    jd_vec3 L = jd_v3_from_angles(s->light_azimuth, s->light_elevation);
+    jd_vec3 L = r->view.light_dir;
     r->light[0] = L.x; r->light[1] = L.y; r->light[2] = L.z;
-    float eta = s->eta > 0.5f ? s->eta : 1.3f;
-    r->f0 = (eta - 1) / (eta + 1);
-    r->f0 *= r->f0;
+    r->f0 = r->view.f0;
     r->fresnel_norm = (1.0f - r->f0) * 20.0f / 21.0f;
-    jd_dipole_init(&r->dp, s->sigma_s, s->sigma_a, eta, s->density > 0 ? s->density : 1.0f);
+    jd_dipole_init(&r->dp, s->sigma_s, s->sigma_a, r->view.eta, s->density > 0 ? s->density : 1.0f);
     r->st.mm_per_world = r->mm_per_world;
     r->st.threads = desc->threads > 0 ? desc->threads : core_count();
 
@@ -345,7 +343,7 @@ static void px_rows(void *ctx, long b, long e, uint64_t *evals)
     jd_ref *r = c->r;
     const jd_scene *s = &r->d.scene;
     int w = r->d.width, h = r->d.height;
-    float shin = s->shininess > 1 ? s->shininess : 1, expo = s->exposure > 0 ? s->exposure : 1;
+    float shin = r->view.shininess, expo = r->view.exposure;
     float bg[3];
     for (int k = 0; k < 3; k++) bg[k] = s->background[k] / (1.0f - 0.15f * s->background[k]);
     for (long y = b; y < e; y++) {
@@ -384,13 +382,11 @@ static void px_rows(void *ctx, long b, long e, uint64_t *evals)
 
 jd_result jd_ref_render(jd_ref *r, float *linear, uint8_t *mask, jd_ref_stats *stats, jd_error *err)
 {
-    const jd_scene *s = &r->d.scene;
     int w = r->d.width, h = r->d.height;
     if (w < 1 || h < 1) return jd_fail(err, JD_ERR_ARG, "image size %dx%d", w, h);
     px_ctx c = {.r = r, .linear = linear, .mask = mask};
-    float dist = s->cam_distance > 0 ? s->cam_distance : 2.7f, fov = s->fov_deg > 1 ? s->fov_deg : 35.0f;
     /* jd_m4_look_at and jd_m4_perspective, as rays. */
-    jd_vec3 eye = jd_v3_scale(jd_v3_from_angles(s->cam_azimuth, s->cam_elevation), dist);
+    jd_vec3 eye = r->view.eye;
     jd_vec3 f = jd_v3_norm(jd_v3_sub(jd_v3(0, 0, 0), eye));
     jd_vec3 rt = jd_v3_norm(jd_v3_cross(f, jd_v3(0, 1, 0)));
     jd_vec3 up = jd_v3_cross(rt, f);
@@ -398,7 +394,7 @@ jd_result jd_ref_render(jd_ref *r, float *linear, uint8_t *mask, jd_ref_stats *s
     c.fwd[0] = f.x; c.fwd[1] = f.y; c.fwd[2] = f.z;
     c.right[0] = rt.x; c.right[1] = rt.y; c.right[2] = rt.z;
     c.up[0] = up.x; c.up[1] = up.y; c.up[2] = up.z;
-    c.tan_half = tanf(fov * 3.14159265f / 360.0f);
+    c.tan_half = tanf(r->view.fov_deg * 3.14159265f / 360.0f);
     c.aspect = (float)w / (float)h;
     double t0 = now_ms();
     uint64_t ev = par_run(r->st.threads, h, 1, px_rows, &c, "reference", r->d.progress);

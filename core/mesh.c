@@ -41,6 +41,13 @@ void jd_mesh_compute_bounds(jd_mesh *m)
     m->bmax = hi;
 }
 
+void jd_mesh_placement(const jd_mesh *m, jd_vec3 *centre, float *radius)
+{
+    *centre = jd_v3_scale(jd_v3_add(m->bmin, m->bmax), 0.5f);
+    *radius = 0.5f * jd_v3_len(jd_v3_sub(m->bmax, m->bmin));
+    if (!(*radius > 0)) *radius = 1.0f; /* a single point */
+}
+
 static void normalize_all(jd_mesh *m)
 {
     for (uint32_t i = 0; i < m->num_vertices; i++) {

@@ -23,6 +23,9 @@ uint32_t jd_mesh_index(const jd_mesh *m, uint32_t i);
 /* Every index in range and every position finite and within +-1e6. */
 jd_result jd_mesh_validate(const jd_mesh *m, const char *name, jd_error *err);
 void jd_mesh_compute_bounds(jd_mesh *m);
+/* Where the renderer puts a mesh: its box centre at the origin and its half
+ * box diagonal as the unit of length, world = (p - centre) / radius. */
+void jd_mesh_placement(const jd_mesh *m, jd_vec3 *centre, float *radius);
 /* Area-weighted vertex normals; degenerate vertices get +Z. */
 void jd_mesh_compute_normals(jd_mesh *m);
 /* Normalises normals read from a file; zero or non-finite ones are recomputed. */

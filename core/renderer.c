@@ -116,6 +116,22 @@ void jd_scene_defaults(jd_scene *s, const jd_material *m)
     s->background[2] = 0.065f;
 }
 
+void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, jd_scene_view *v)
+{
+    jd_mesh_placement(m, &v->centre, &v->radius);
+    float mm_per_unit = s->mm_per_unit > 0 ? s->mm_per_unit : 100.0f / (2.0f * v->radius);
+    v->mm_per_world = mm_per_unit * v->radius;
+    v->cam_distance = s->cam_distance > 0 ? s->cam_distance : 2.7f;
+    v->fov_deg = s->fov_deg > 1 ? s->fov_deg : 35.0f;
+    v->eye = jd_v3_scale(jd_v3_from_angles(s->cam_azimuth, s->cam_elevation), v->cam_distance);
+    v->light_dir = jd_v3_from_angles(s->light_azimuth, s->light_elevation);
+    v->eta = s->eta > 0.5f ? s->eta : 1.3f;
+    float f0 = (v->eta - 1.0f) / (v->eta + 1.0f);
+    v->f0 = f0 * f0;
+    v->shininess = s->shininess > 1 ? s->shininess : 1;
+    v->exposure = s->exposure > 0 ? s->exposure : 1;
+}
+
 static double now_ms(void)
 {
     struct timespec ts;
@@ -387,10 +403,9 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     if (!r->tail_px) return JD_ERR_BUDGET;
 
     const jd_mesh *m = d->mesh;
-    jd_vec3 c = jd_v3_scale(jd_v3_add(m->bmin, m->bmax), 0.5f);
-    jd_vec3 ext = jd_v3_sub(m->bmax, m->bmin);
-    float radius = 0.5f * jd_v3_len(ext);
-    if (!(radius > 0)) radius = 1.0f;
+    jd_vec3 c, ext = jd_v3_sub(m->bmax, m->bmin);
+    float radius;
+    jd_mesh_placement(m, &c, &radius);
     r->box_half = 0.5f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius * 1.01f;
     while (glGetError() != GL_NO_ERROR) {}
     if ((res = upload_mesh(m, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err)) ||
@@ -498,19 +513,16 @@ typedef struct frame_params {
 
 static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f)
 {
-    const jd_mesh *m = r->d.mesh;
-    float radius = 0.5f * jd_v3_len(jd_v3_sub(m->bmax, m->bmin));
-    if (!(radius > 0)) radius = 1.0f;
-    float mm_per_unit = s->mm_per_unit > 0 ? s->mm_per_unit : 100.0f / (2.0f * radius);
-    f->mm_per_world = mm_per_unit * radius;
+    jd_scene_view sv;
+    jd_scene_view_of(s, r->d.mesh, &sv);
+    f->mm_per_world = sv.mm_per_world;
 
     /* A panel mounted at 90 or 270 degrees shows the picture sideways: the
      * camera sees the rotated aspect and clip space turns to meet the panel. */
     int quarter = r->d.rotation == 90 || r->d.rotation == 270;
     float aspect = quarter ? (float)r->d.height / (float)r->d.width : (float)r->d.width / (float)r->d.height;
-    float dist = s->cam_distance > 0 ? s->cam_distance : 2.7f;
-    float fov = s->fov_deg > 1 ? s->fov_deg : 35.0f;
-    f->eye = jd_v3_scale(jd_v3_from_angles(s->cam_azimuth, s->cam_elevation), dist);
+    float dist = sv.cam_distance, fov = sv.fov_deg;
+    f->eye = sv.eye;
     jd_mat4 view = jd_m4_look_at(f->eye, jd_v3(0, 0, 0), jd_v3(0, 1, 0));
     jd_mat4 proj = jd_m4_perspective(fov, aspect, fmaxf(dist - 1.2f, 0.05f), dist + 1.2f);
     if (r->d.rotation) {
@@ -521,11 +533,11 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
     }
     f->mvp = jd_m4_mul(proj, view);
 
-    f->light_dir = jd_v3_from_angles(s->light_azimuth, s->light_elevation);
+    f->light_dir = sv.light_dir;
     jd_mat4 lview = jd_m4_look_at(jd_v3_scale(f->light_dir, 2.0f), jd_v3(0, 0, 0), jd_v3(0, 1, 0));
     f->light_mvp = jd_m4_mul(jd_m4_ortho(-1, 1, -1, 1, 1, 3), lview);
 
-    jd_dipole_init(&f->dipole, s->sigma_s, s->sigma_a, s->eta, s->density > 0 ? s->density : 1.0f);
+    jd_dipole_init(&f->dipole, s->sigma_s, s->sigma_a, sv.eta, s->density > 0 ? s->density : 1.0f);
     const jd_dipole *dp_ = &f->dipole;
 #define dp (*dp_)
     double mean_ss = 0;
@@ -542,13 +554,12 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
     }
 #undef dp
     f->range_mm = 2.0f * f->mm_per_world;
-    float f0 = (s->eta - 1.0f) / (s->eta + 1.0f);
-    f->f0 = f0 * f0;
+    f->f0 = sv.f0;
     f->shading[0] = s->ambient;
     f->shading[1] = s->specular;
-    f->shading[2] = s->shininess > 1 ? s->shininess : 1;
-    f->shading[3] = s->exposure > 0 ? s->exposure : 1;
-    f->inv_eta = 1.0f / (s->eta > 0.5f ? s->eta : 1.3f);
+    f->shading[2] = sv.shininess;
+    f->shading[3] = sv.exposure;
+    f->inv_eta = 1.0f / sv.eta;
     f->inset = 2.0f / (float)r->d.proxy_cells;
 
     /* The paper's spread width, sigma = 2 sigma_s, read as millimetres and

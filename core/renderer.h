@@ -55,6 +55,20 @@ typedef struct jd_scene {
 
 void jd_scene_defaults(jd_scene *s, const jd_material *m);
 
+/* What a scene makes of a mesh's world, in one place so that the renderer
+ * and anything that must show the same picture (jade reference) agree. */
+typedef struct jd_scene_view {
+    jd_vec3 centre;       /* jd_mesh_placement */
+    float radius;
+    float mm_per_world;   /* millimetres per world unit */
+    jd_vec3 eye;          /* the camera, looking at the origin with +Y up */
+    float cam_distance, fov_deg;
+    jd_vec3 light_dir;    /* unit, towards the (directional) light */
+    float eta, f0;        /* refractive index, Schlick's F0 */
+    float shininess, exposure;
+} jd_scene_view;
+void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, jd_scene_view *v);
+
 enum { JD_PASS_LIGHT_DEPTH, JD_PASS_CAPTURE, JD_PASS_SH, JD_PASS_SPREAD, JD_PASS_MAIN, JD_PASS_COUNT };
 const char *jd_pass_name(int pass);
 
