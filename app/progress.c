@@ -1,21 +1,15 @@
 #include "progress.h"
 
 #include <stdio.h>
-#include <time.h>
 #include <unistd.h>
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
+#include "clock.h"
 
 void jd_progress_start(jd_progress *p, const char *label, double total, int enabled)
 {
     p->label = label;
     p->total = total > 0 ? total : 1;
-    p->start_ms = p->last_ms = now_ms();
+    p->start_ms = p->last_ms = jd_clock_ms();
     p->tty = isatty(2);
     p->last_tenth = -1;
     p->enabled = enabled;
@@ -23,7 +17,7 @@ void jd_progress_start(jd_progress *p, const char *label, double total, int enab
 
 static void draw(jd_progress *p, double done, int final)
 {
-    double now = now_ms(), el = (now - p->start_ms) / 1000.0, f = done / p->total;
+    double now = jd_clock_ms(), el = (now - p->start_ms) / 1000.0, f = done / p->total;
     if (f > 1) f = 1;
     char eta[48];
     if (final) snprintf(eta, sizeof eta, "done in %.1f s", el);
@@ -45,7 +39,7 @@ static void draw(jd_progress *p, double done, int final)
 void jd_progress_update(jd_progress *p, double done)
 {
     if (!p->enabled) return;
-    double now = now_ms();
+    double now = jd_clock_ms();
     if (p->tty) {
         if (now - p->last_ms < 100) return;
         p->last_ms = now;

@@ -9,6 +9,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "progress.h"
 #include "ref_bvh.h"
 #include "ref_diffusion.h"
@@ -32,13 +33,6 @@ struct jd_ref {
     float f0, fresnel_norm; /* Schlick F0 and the hemispherical mean of its transmittance */
     jd_ref_stats st;
 };
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
 
 /* ---- work spread over threads --------------------------------------- */
 
@@ -193,7 +187,7 @@ static void irr_chunk(void *ctx, long b, long e, uint64_t *evals)
 
 jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *stats, jd_error *err)
 {
-    double t0 = now_ms();
+    double t0 = jd_clock_ms();
     *out = NULL;
     const jd_mesh *m = desc->mesh;
     if (!m || m->num_indices < 3) return jd_fail(err, JD_ERR_ARG, "the mesh has no triangles");
@@ -285,18 +279,18 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     r->st.samples = n;
     r->st.spacing_mm = sqrt(area_mm2);
     r->st.window_mm = desc->window_mm > 0 ? desc->window_mm : fmax(2.5, 3.0 * r->st.spacing_mm);
-    r->st.setup_ms = now_ms() - t0;
+    r->st.setup_ms = jd_clock_ms() - t0;
 
-    double t1 = now_ms();
+    double t1 = jd_clock_ms();
     irr_ctx ic = {r};
     par_run(r->st.threads, n, 2048, irr_chunk, &ic, "irradiance", desc->progress);
-    r->st.irradiance_ms = now_ms() - t1;
+    r->st.irradiance_ms = jd_clock_ms() - t1;
 
-    double t2 = now_ms();
+    double t2 = jd_clock_ms();
     res = jd_diffusion_build(&r->diff, r->pts, n, &r->dp, (float)r->st.window_mm,
                              desc->error > 0 ? desc->error : 0.01f, err);
     if (res) { jd_ref_destroy(r); return res; }
-    r->st.tree_ms = now_ms() - t2;
+    r->st.tree_ms = jd_clock_ms() - t2;
     if (stats) *stats = r->st;
     *out = r;
     return JD_OK;
@@ -396,9 +390,9 @@ jd_result jd_ref_render(jd_ref *r, float *linear, uint8_t *mask, jd_ref_stats *s
     c.up[0] = up.x; c.up[1] = up.y; c.up[2] = up.z;
     c.tan_half = tanf(r->view.fov_deg * 3.14159265f / 360.0f);
     c.aspect = (float)w / (float)h;
-    double t0 = now_ms();
+    double t0 = jd_clock_ms();
     uint64_t ev = par_run(r->st.threads, h, 1, px_rows, &c, "reference", r->d.progress);
-    r->st.pixels_ms = now_ms() - t0;
+    r->st.pixels_ms = jd_clock_ms() - t0;
     long obj = 0;
     if (mask)
         for (long i = 0; i < (long)w * h; i++) obj += mask[i] != 0;

@@ -9,9 +9,9 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
-#include <time.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "draco_header.h"
 #include "draco_shim.h"
 
@@ -22,13 +22,6 @@
 #define JD_ASAN 1
 #endif
 #endif
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
 
 static int write_all(void *user, const void *data, size_t n)
 {
@@ -96,7 +89,7 @@ static jd_result read_exact(reader *r, void *dst, size_t n, int *eof, jd_error *
     char *p = dst;
     *eof = 0;
     while (n) {
-        int left = (int)(r->deadline - now_ms());
+        int left = (int)(r->deadline - jd_clock_ms());
         if (left <= 0)
             return jd_fail(err, JD_ERR_TIMEOUT, "%s: decoding took longer than %d ms; refused",
                            r->name, r->timeout_ms);
@@ -213,7 +206,7 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
         r = jd_fail(err, JD_ERR_IO, "pipe: %s", strerror(errno));
         goto fail;
     }
-    double t0 = now_ms();
+    double t0 = jd_clock_ms();
     pid_t pid = fork();
     if (pid < 0) {
         close(data_pipe[0]); close(data_pipe[1]); close(err_pipe[0]); close(err_pipe[1]);
@@ -255,7 +248,7 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
     if (r == JD_OK && (h.flags & JD_DRACO_HAS_UVS))
         r = read_exact(&rd, out->uvs, sizeof(float) * 2 * h.num_vertices, &eof, err);
     if (r == JD_OK) r = read_exact(&rd, idx32, sizeof(uint32_t) * 3 * (size_t)h.num_faces, &eof, err);
-    st.decode_ms = now_ms() - t0;
+    st.decode_ms = jd_clock_ms() - t0;
 
     reap(pid, r != JD_OK && !eof, &status);
     if (eof || (r == JD_OK && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)))

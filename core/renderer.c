@@ -3,8 +3,8 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "gl.h"
 #include "gl_program.h"
 #include "sh.h"
@@ -130,13 +130,6 @@ void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, jd_scene_view *v)
     v->f0 = f0 * f0;
     v->shininess = s->shininess > 1 ? s->shininess : 1;
     v->exposure = s->exposure > 0 ? s->exposure : 1;
-}
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
 /* ---- start-up ---------------------------------------------------------- */
@@ -819,7 +812,7 @@ static void lap(jd_renderer *r, jd_frame_stats *st, int pass, double *t)
     if (!r->d.timing || !st) return;
     if (r->tq.ok && r->tq.used[pass]) r->tq.end(GL_TIME_ELAPSED_EXT);
     glFinish();
-    double now = now_ms();
+    double now = jd_clock_ms();
     st->pass_ms[pass] += now - *t;
     *t = now;
 }
@@ -848,7 +841,7 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     memset(&f, 0, sizeof f);
     frame_setup(r, s, &f);
     if (stats) memset(stats, 0, sizeof *stats);
-    double t = now_ms();
+    double t = jd_clock_ms();
     /* Packed values must reach RGBA8 bit-exact: GL enables dithering by default. */
     glDisable(GL_DITHER);
     glEnable(GL_SCISSOR_TEST);

@@ -5,23 +5,16 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "check.h"
+#include "clock.h"
 #include "mesh_load.h"
 
 static unsigned char mem[32 << 20];
 static char dir[256];
 static double worst_ms;
 static char worst_name[512];
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
 
 static void write_file(const char *path, const void *data, size_t n)
 {
@@ -51,9 +44,9 @@ static jd_result load_limited(const char *path, int timeout_ms, size_t memory, j
     jd_arena a;
     jd_arena_init(&a, mem, sizeof mem);
     jd_load_desc ld = {.path = path, .timeout_ms = timeout_ms, .decode_memory_bytes = memory, .allow_32bit_indices = 1};
-    double t0 = now_ms();
+    double t0 = jd_clock_ms();
     jd_result r = jd_mesh_load_draco(&ld, &a, m, NULL, err);
-    double ms = now_ms() - t0;
+    double ms = jd_clock_ms() - t0;
     if (ms > worst_ms) { worst_ms = ms; snprintf(worst_name, sizeof worst_name, "%s", path); }
     CHECK(ms < 2000, "%s took %.0f ms", path, ms);
     return r;
