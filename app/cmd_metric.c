@@ -9,6 +9,7 @@
 #include <stb_image.h>
 
 #include "commands.h"
+#include "display_curve.h"
 #include "image_metric.h"
 
 static float *read_image(const char *path, int *w, int *h, unsigned char **rgba, char *why, size_t cap)

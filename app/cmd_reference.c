@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "display_curve.h"
 #include "image_out.h"
 #include "ref_render.h"
 #include "session.h"
@@ -59,7 +60,7 @@ int jd_cmd_reference(int argc, char **argv)
         goto done;
     }
     for (size_t i = 0; i < n; i++) {
-        for (int c = 0; c < 3; c++) rgba[4 * i + c] = jd_ref_display(linear[3 * i + c]);
+        for (int c = 0; c < 3; c++) rgba[4 * i + c] = jd_display_encode(linear[3 * i + c]);
         rgba[4 * i + 3] = 255;
     }
     if (jd_png_write(o.out, o.width, o.height, rgba, &err) ||

@@ -5,13 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-float jd_display_to_linear(unsigned char v)
-{
-    double d = v / 255.0, t = d * d; /* undo the gamma-2 encoding */
-    if (t > 0.999) t = 0.999;        /* the shoulder's inverse grows without bound at 1/0.15 */
-    return (float)(t / (1.0 - 0.15 * t));
-}
-
 static double luminance(const float *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
 /* SSIM on luminance with an 8x8 window sliding by 4, windows counted when

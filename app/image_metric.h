@@ -15,8 +15,6 @@ typedef struct jd_metric {
 
 /* A and B: w*h*3 linear floats; mask: w*h bytes, nonzero = compared (NULL: all). */
 void jd_metric_compute(const float *a, const float *b, const unsigned char *mask, int w, int h, jd_metric *out);
-/* jade's display encoding undone: the shader writes sqrt(c / (1 + 0.15 c)). */
-float jd_display_to_linear(unsigned char v);
 
 /* A little-endian colour PFM as w*h*3 linear floats, top row first
  * (malloc'd); NULL and a reason for anything else, negative or

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "clock.h"
+#include "display_curve.h"
 #include "progress.h"
 #include "ref_bvh.h"
 #include "ref_diffusion.h"
@@ -313,14 +314,6 @@ void jd_ref_exitance(const jd_ref *r, const float p[3], const float n[3], float 
     jd_diffusion_exitance(&r->diff, x, e, out);
 }
 
-uint8_t jd_ref_display(float c)
-{
-    if (!(c > 0)) return 0;
-    float y = c / (1.0f + 0.15f * c);
-    if (y > 1) y = 1;
-    return (uint8_t)(sqrtf(y) * 255.0f + 0.5f);
-}
-
 /* ---- the picture -------------------------------------------------------- */
 
 typedef struct px_ctx {
@@ -339,7 +332,8 @@ static void px_rows(void *ctx, long b, long e, uint64_t *evals)
     int w = r->d.width, h = r->d.height;
     float shin = r->view.shininess, expo = r->view.exposure;
     float bg[3];
-    for (int k = 0; k < 3; k++) bg[k] = s->background[k] / (1.0f - 0.15f * s->background[k]);
+    /* The clear colour is written as sqrt(background): background is past the shoulder. */
+    for (int k = 0; k < 3; k++) bg[k] = jd_shoulder_inverse(s->background[k]);
     for (long y = b; y < e; y++) {
         for (int x = 0; x < w; x++) {
             float *o = c->linear + 3 * ((size_t)y * w + x);

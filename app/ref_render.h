@@ -54,7 +54,5 @@ void jd_ref_exitance(const jd_ref *r, const float p[3], const float n[3], float 
 /* The picture: linear colour (w*h*3, top row first, exposure applied, before
  * the tone curve) and a mask (255 where the object is). */
 jd_result jd_ref_render(jd_ref *r, float *linear, uint8_t *mask, jd_ref_stats *stats, jd_error *err);
-/* jade's display encoding of a linear value: sqrt(c / (1 + 0.15 c)), 8 bits. */
-uint8_t jd_ref_display(float c);
 
 #endif

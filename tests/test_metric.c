@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "display_curve.h"
 #include "image_metric.h"
 
 enum { W = 64, H = 48 };
