@@ -104,13 +104,6 @@ static void tri_vertices(const jd_ref *r, uint32_t t, const float **a, const flo
     *c = r->pos + 3 * (size_t)r->tri[3 * t + 2];
 }
 
-static double tri_area(const float *a, const float *b, const float *c)
-{
-    double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    double x = e1[1] * e2[2] - e1[2] * e2[1], y = e1[2] * e2[0] - e1[0] * e2[2], z = e1[0] * e2[1] - e1[1] * e2[0];
-    return 0.5 * sqrt(x * x + y * y + z * z);
-}
-
 static void normalize3(float v[3])
 {
     float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -220,7 +213,7 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     for (uint32_t t = 0; t < r->num_tris; t++) {
         const float *a, *b, *cc;
         tri_vertices(r, t, &a, &b, &cc);
-        double area = tri_area(a, b, cc);
+        double area = jd_triangle_area(a, b, cc);
         for (int v = 0; v < 3; v++) {
             const float *nv = r->nrm + 3 * (size_t)r->tri[3 * t + v];
             flux += area * (a[0] + b[0] + cc[0]) / 3 * nv[0] + area * (a[1] + b[1] + cc[1]) / 3 * nv[1] +
@@ -247,7 +240,7 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     for (uint32_t t = 0; t < r->num_tris; t++) {
         const float *a, *b, *cc;
         tri_vertices(r, t, &a, &b, &cc);
-        total += tri_area(a, b, cc);
+        total += jd_triangle_area(a, b, cc);
     }
     if (!(total > 0)) { jd_ref_destroy(r); return jd_fail(err, JD_ERR_ARG, "the mesh has no area"); }
     double mm2 = (double)r->mm_per_world * r->mm_per_world;

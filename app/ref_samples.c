@@ -8,6 +8,13 @@
  * last ones are mostly refused by then. */
 enum { CANDIDATES_PER_POINT = 8 };
 
+double jd_triangle_area(const float a[3], const float b[3], const float c[3])
+{
+    double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double x = e1[1] * e2[2] - e1[2] * e2[1], y = e1[2] * e2[0] - e1[0] * e2[2], z = e1[0] * e2[1] - e1[1] * e2[0];
+    return 0.5 * sqrt(x * x + y * y + z * z);
+}
+
 static uint32_t hash32(uint32_t x)
 {
     x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
@@ -46,11 +53,8 @@ jd_result jd_surface_samples(const float *pos, const uint32_t *tri, uint32_t num
     }
     double total = 0;
     for (uint32_t t = 0; t < num_tris; t++) {
-        const float *a = pos + 3 * (size_t)tri[3 * t], *b = pos + 3 * (size_t)tri[3 * t + 1],
-                    *c = pos + 3 * (size_t)tri[3 * t + 2];
-        double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        double x = e1[1] * e2[2] - e1[2] * e2[1], y = e1[2] * e2[0] - e1[0] * e2[2], z = e1[0] * e2[1] - e1[1] * e2[0];
-        total += 0.5 * sqrt(x * x + y * y + z * z);
+        total += jd_triangle_area(pos + 3 * (size_t)tri[3 * t], pos + 3 * (size_t)tri[3 * t + 1],
+                                  pos + 3 * (size_t)tri[3 * t + 2]);
         cdf[t] = total;
     }
     /* Random sequential packing saturates near 0.7 points per d^2: a

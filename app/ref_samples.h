@@ -14,6 +14,8 @@ typedef struct jd_surface_point {
     float u, v;      /* barycentrics of the second and third vertex */
 } jd_surface_point;
 
+double jd_triangle_area(const float a[3], const float b[3], const float c[3]);
+
 /* Up to `target` points (fewer where the surface is full at the spacing
  * sqrt(area / target)); *out is malloc'd. */
 jd_result jd_surface_samples(const float *pos, const uint32_t *tri, uint32_t num_tris, uint32_t target, uint32_t seed,
