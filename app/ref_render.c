@@ -133,11 +133,50 @@ static void surface_at(const jd_ref *r, uint32_t t, float u, float v, float p[3]
     normalize3(n);
 }
 
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Every edge shared by two triangles or more: no boundary. (A mesh whose
+ * vertices are split along seams counts as open: its normals are then kept.) */
+static int mesh_is_closed(const jd_ref *r)
+{
+    size_t n = 3 * (size_t)r->num_tris;
+    uint64_t *e = malloc(sizeof *e * n);
+    if (!e) return 0;
+    for (size_t t = 0; t < r->num_tris; t++)
+        for (int k = 0; k < 3; k++) {
+            uint64_t a = r->tri[3 * t + k], b = r->tri[3 * t + (k + 1) % 3];
+            e[3 * t + k] = a < b ? a << 32 | b : b << 32 | a;
+        }
+    qsort(e, n, sizeof *e, cmp_u64);
+    int closed = 1;
+    for (size_t i = 0; i < n && closed;) {
+        size_t j = i;
+        while (j < n && e[j] == e[i]) j++;
+        if (j - i < 2) closed = 0;
+        i = j;
+    }
+    free(e);
+    return closed;
+}
+
 /* Schlick transmittance, as jade's shader has it. */
 static float fresnel_t(const jd_ref *r, float cosv)
 {
     float x = 1.0f - (cosv < 0 ? 0 : cosv > 1 ? 1 : cosv), x2 = x * x;
     return 1.0f - (r->f0 + (1.0f - r->f0) * x2 * x2 * x);
+}
+
+/* Whether the light reaches p (geometric normal ng): a shadow ray. */
+static int light_visible(const jd_ref *r, const float p[3], const float ng[3])
+{
+    /* Leave on the light's side of the true surface. */
+    float side = dot3(ng, r->light) >= 0 ? 1.0f : -1.0f, o[3];
+    for (int k = 0; k < 3; k++) o[k] = p[k] + side * r->eps * ng[k];
+    return !jd_bvh_occluded(&r->bvh, o, r->light, 0.0f, 1e30f);
 }
 
 /* Irradiance entering the surface at p (outward normal n, geometric ng). */
@@ -147,13 +186,8 @@ static void irradiance(const jd_ref *r, const float p[3], const float n[3], cons
     const jd_scene *s = &r->d.scene;
     float amb = s->ambient, direct = 0;
     float ndl = dot3(n, r->light);
-    if (ndl > 0 && s->light_intensity > 0) {
-        /* Leave on the light's side of the true surface. */
-        float side = dot3(ng, r->light) >= 0 ? 1.0f : -1.0f, o[3];
-        for (int k = 0; k < 3; k++) o[k] = p[k] + side * r->eps * ng[k];
-        if (!jd_bvh_occluded(&r->bvh, o, r->light, 0.0f, 1e30f))
-            direct = s->light_intensity * ndl * fresnel_t(r, ndl) / r->fresnel_norm;
-    }
+    if (ndl > 0 && s->light_intensity > 0 && light_visible(r, p, ng))
+        direct = s->light_intensity * ndl * fresnel_t(r, ndl) / r->fresnel_norm;
     for (int c = 0; c < 3; c++) e[c] = amb + direct;
 }
 
@@ -208,20 +242,24 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     for (uint32_t i = 0; i < 3 * r->num_tris; i++) r->tri[i] = jd_mesh_index(m, i);
     /* Light enters through the outside: turn normals that point in (a mesh
      * wound clockwise) around. For a closed surface the integral of x.n is
-     * three times the volume, positive when n points out. */
-    double flux = 0;
-    for (uint32_t t = 0; t < r->num_tris; t++) {
-        const float *a, *b, *cc;
-        tri_vertices(r, t, &a, &b, &cc);
-        double area = jd_triangle_area(a, b, cc);
-        for (int v = 0; v < 3; v++) {
-            const float *nv = r->nrm + 3 * (size_t)r->tri[3 * t + v];
-            flux += area * (a[0] + b[0] + cc[0]) / 3 * nv[0] + area * (a[1] + b[1] + cc[1]) / 3 * nv[1] +
-                    area * (a[2] + b[2] + cc[2]) / 3 * nv[2];
+     * three times the volume, positive when n points out; an open one (a
+     * floor, a sheet) has no inside, and its normals are taken as they come,
+     * as the renderer takes them. */
+    if (mesh_is_closed(r)) {
+        double flux = 0;
+        for (uint32_t t = 0; t < r->num_tris; t++) {
+            const float *a, *b, *cc;
+            tri_vertices(r, t, &a, &b, &cc);
+            double area = jd_triangle_area(a, b, cc);
+            for (int v = 0; v < 3; v++) {
+                const float *nv = r->nrm + 3 * (size_t)r->tri[3 * t + v];
+                flux += area * (a[0] + b[0] + cc[0]) / 3 * nv[0] + area * (a[1] + b[1] + cc[1]) / 3 * nv[1] +
+                        area * (a[2] + b[2] + cc[2]) / 3 * nv[2];
+            }
         }
+        if (flux < 0)
+            for (uint32_t i = 0; i < 3 * m->num_vertices; i++) r->nrm[i] = -r->nrm[i];
     }
-    if (flux < 0)
-        for (uint32_t i = 0; i < 3 * m->num_vertices; i++) r->nrm[i] = -r->nrm[i];
     r->mm_per_world = r->view.mm_per_world;
     r->eps = 1e-4f;
     jd_vec3 L = r->view.light_dir;
@@ -354,7 +392,10 @@ static void px_rows(void *ctx, long b, long e, uint64_t *evals)
             float ndl = fmaxf(dot3(nv, r->light), 0.0f), hv[3];
             for (int k = 0; k < 3; k++) hv[k] = r->light[k] + v[k];
             normalize3(hv);
-            float spec = ndl > 0 ? s->specular * powf(fmaxf(dot3(nv, hv), 0.0f), shin) * s->light_intensity : 0.0f;
+            /* The highlight is the light's mirror image: none in shadow. */
+            float spec = ndl > 0 && light_visible(r, p, ng)
+                             ? s->specular * powf(fmaxf(dot3(nv, hv), 0.0f), shin) * s->light_intensity
+                             : 0.0f;
             for (int k = 0; k < 3; k++) o[k] = (ft * mo[k] + spec) * expo;
             if (c->mask) c->mask[(size_t)y * w + x] = 255;
         }
