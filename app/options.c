@@ -31,7 +31,7 @@ typedef struct opt {
 static const opt table[] = {
     {"--mesh", T_STR, OFF(mesh), 0, 0, S, "FILE.drc   Draco mesh [the default asset]"},
     {"--out", T_STR, OFF(out), 0, 0, RO | JD_OPT_REFERENCE, "FILE.png   output image [jade.png]"},
-    {"--sheet", T_STR, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual side by side, labelled"},
+    {"--sheet", T_STR, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual | full side by side, labelled"},
     {"--sheet-reference", T_STR, OFF(sheet_ref), 0, 0, RO, "FILE.png   with --sheet: a reference picture as the first panel"},
     {"--pfm", T_STR, OFF(pfm), 0, 0, JD_OPT_REFERENCE, "FILE.pfm   also write the linear picture (before the tone curve)"},
     {"--mask", T_STR, OFF(mask_out), 0, 0, JD_OPT_REFERENCE, "FILE.png   also write the object's pixels (255) for jade metric --mask"},
@@ -50,7 +50,7 @@ static const opt table[] = {
     {"--rotate", T_INT, OFF(rotation), 0, 270, K | RO, "DEG        0, 90, 180 or 270, counter-clockwise as DRM (portrait panels) [0]"},
     {"--size", T_SIZE, 0, 16, 4096, RO | V | K | B | JD_OPT_REFERENCE, "WxH        image or window size (drm: the mode) [512x512]"},
     {"--frames", T_INT, OFF(frames), 1, 100000000, R | B, "N          frames [render 1, bench 200, view/kiosk: until closed]"},
-    {"--mode", T_MODE, OFF(mode_list), 0, 0, R | B, "M          none|single|dual [dual]; bench also: all"},
+    {"--mode", T_MODE, OFF(mode_list), 0, 0, R | B, "M          none|single|dual|full [dual]; bench also: all"},
     {"--material", T_STR, OFF(material), 0, 0, S, "NAME       measured material [marble]"},
     {"--sigma-s", T_FLOAT3, OFF(scene.sigma_s), 0, 1000, S, "R,G,B      reduced scattering, mm^-1"},
     {"--sigma-a", T_FLOAT3, OFF(scene.sigma_a), 0, 1000, S, "R,G,B      absorption, mm^-1"},
@@ -70,6 +70,7 @@ static const opt table[] = {
     {"--light-map", T_INT, OFF(rdesc.light_map_size), 16, 2048, R | B, "N          light depth map size [256]"},
     {"--proxy-cells", T_INT, OFF(rdesc.proxy_cells), 4, 64, R | B, "N          proxy mesh grid [40]"},
     {"--spread-divisor", T_INT, OFF(rdesc.spread_divisor), 1, 16, R | B, "N          spread layers at 1/N resolution [8]"},
+    {"--diffusion-size", T_INT, OFF(rdesc.diffusion_size), 16, 2048, R | B, "N          full mode: first light-space diffusion level, texels per side [light map / 4]"},
     {"--profile", T_STR, OFF(profile), 0, 0, R | B | JD_OPT_INFO, "NAME       emulate a device's limits: generic, vc4, mali400"},
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
     {"--fragment-thickness", T_FLAG, OFF(rdesc.fragment_thickness), 0, 0, R | B, "           thickness per fragment, not per vertex (coarse meshes)"},
@@ -188,7 +189,7 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
             jd_mode m;
             if (!strcmp(v, "all") && (command & JD_OPT_BENCH)) { o->mode_list = v; break; }
             if (!jd_mode_parse(v, &m)) {
-                fprintf(stderr, "jade %s: %s: expected none, single or dual%s, got '%s'\n", cmd, a,
+                fprintf(stderr, "jade %s: %s: expected none, single, dual or full%s, got '%s'\n", cmd, a,
                         (command & JD_OPT_BENCH) ? " or all" : "", v);
                 return 0;
             }

@@ -1,4 +1,4 @@
-/* none | single | dual side by side with labels: what a person compares;
+/* none | single | dual | full side by side with labels: what a person compares;
  * with --sheet-reference, the reference picture first. */
 #include <stdio.h>
 #include <string.h>
@@ -23,7 +23,7 @@ int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
             return 1;
         }
     }
-    const int first = ref ? 1 : 0, panels = 3 + first;
+    const int first = ref ? 1 : 0, panels = JD_MODE_COUNT + first;
     const int sw = panels * w, sh = h + band;
     jd_error err = {0};
     uint8_t *sheet = jd_arena_alloc(&s->arena, (size_t)sw * sh * 4, 16, "the sheet image", &err);
@@ -32,7 +32,7 @@ int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
         sheet[4 * i] = sheet[4 * i + 1] = sheet[4 * i + 2] = 24;
         sheet[4 * i + 3] = 255;
     }
-    static const char *labels[] = {"NONE (DIRECT ONLY)", "SINGLE (SCCG 2006)", "DUAL FUNNEL"};
+    static const char *labels[JD_MODE_COUNT] = {"NONE (DIRECT ONLY)", "SINGLE (SCCG 2006)", "DUAL FUNNEL", "FULL (DIFFUSED)"};
     const uint8_t white[3] = {235, 235, 235};
     if (ref) {
         for (int y = 0; y < h; y++) memcpy(sheet + 4 * ((size_t)(y + band) * sw), ref + 4 * (size_t)y * w, 4 * (size_t)w);
@@ -60,6 +60,6 @@ int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
         fprintf(stderr, "jade render: %s\n", err.msg);
         return 1;
     }
-    printf("wrote %s (%dx%d: %snone | single | dual, %s)\n", o->sheet, sw, sh, first ? "reference | " : "", o->material);
+    printf("wrote %s (%dx%d: %snone | single | dual | full, %s)\n", o->sheet, sw, sh, first ? "reference | " : "", o->material);
     return 0;
 }

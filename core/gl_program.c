@@ -69,14 +69,15 @@ static const char *skip_version(const char *text)
 
 /* Fragment shaders get a default precision (highp only where the packing
  * asks for it and the device has it); every shader gets the packing helpers
- * as source string 1; the shader's own file is string 0, its lines numbered
- * as in the file. */
+ * as source string 1 and the light-map helpers as string 2; the shader's own
+ * file is string 0, its lines numbered as in the file. */
 static jd_result compile(GLenum type, const char *name, const char *defines, GLuint *out,
                          jd_error *err)
 {
     const char *text = jd_shader_text(name);
     const char *pack = jd_shader_text("shaders_es2/pack.glsl");
-    if (!text || !pack) return jd_fail(err, JD_ERR_ARG, "shader %s is not embedded in this build", name);
+    const char *light = jd_shader_text("shaders_es2/light.glsl");
+    if (!text || !pack || !light) return jd_fail(err, JD_ERR_ARG, "shader %s is not embedded in this build", name);
     const char *parts[8];
     int n = 0;
     parts[n++] = "#version 100\n";
@@ -88,6 +89,8 @@ static jd_result compile(GLenum type, const char *name, const char *defines, GLu
     else
         parts[n++] = "precision highp sampler2D;\n#line 1 1\n";
     parts[n++] = pack;
+    parts[n++] = "\n#line 1 2\n";
+    parts[n++] = light;
     parts[n++] = "\n#line 2 0\n";
     parts[n++] = skip_version(text);
     if (dump_dir) dump(name, parts, n);
@@ -103,7 +106,7 @@ static jd_result compile(GLenum type, const char *name, const char *defines, GLu
         int string, line;
         log_location(log, &string, &line);
         return jd_fail(err, JD_ERR_GL, "%s:%d: shader does not compile: %s",
-                       string == 1 ? "shaders_es2/pack.glsl" : name, line, log);
+                       string == 1 ? "shaders_es2/pack.glsl" : string == 2 ? "shaders_es2/light.glsl" : name, line, log);
     }
     *out = sh;
     return JD_OK;

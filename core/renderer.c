@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "clock.h"
+#include "diffusion_fit.h"
 #include "gl.h"
 #include "gl_program.h"
 #include "sh.h"
@@ -12,6 +13,15 @@
 
 #define SH_BLOCK 8
 #define BLUR_TAPS 4
+/* The full mode's light-space levels: Gaussians of 1, 2, 4, 8 and 16 texels
+ * of the first level, one RGBA8 texture each, every second one half the
+ * size (a wider Gaussian needs fewer texels): a pyramid. Each blur step has
+ * 2 * DIFF_TAPS + 1 taps. */
+#define DIFF_LEVELS 5
+#define DIFF_TEXTURES DIFF_LEVELS
+#define DIFF_TAPS 6
+/* Rd's Gaussians finer than a level texel are applied at the shaded point. */
+#define DIFF_LOCAL 3
 
 /* Render targets are power-of-two textures (some ES 2.0 drivers cannot
  * render to NPOT ones); w x h is the region in use, set by the viewport. */
@@ -33,7 +43,15 @@ typedef struct shade_prog {
     GLint mvp, light_mvp, eye, sh, box_min, box_max, inv_eta, inset;
     GLint light_dir, albedo, light_color, shading, depth, tail, depth_v, tail_v, f0, a0_scale;
     GLint spread, inv_viewport, w0;
+    GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls, wl;
+    GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES];
 } shade_prog;
+
+/* A step of the full mode's light-space diffusion (diffuse_blur.frag). */
+typedef struct diff_prog {
+    GLuint id;
+    GLint src, ref, ref_scale, step, inv_2s2, uv_scale, near;
+} diff_prog;
 
 #define TAIL_SIZE 256
 
@@ -52,28 +70,35 @@ struct jd_renderer {
     jd_renderer_desc d;
     int highp;
     int vertex_thickness; /* thickness read in the vertex stage */
+    int vertex_diffusion; /* the full mode's levels summed in the vertex stage */
     jd_mesh proxy, capture_proxy;
     GLuint mesh_vbo, mesh_ibo, proxy_vbo, proxy_ibo, cap_vbo, cap_ibo, quad_vbo;
     GLuint tail_tex;
     timer_query tq;
     uint8_t *tail_px;     /* TAIL_SIZE RGBA texels, rebuilt when the material changes */
     float tail_key[9];
+    float fit_key[9];
+    jd_diffusion_fit fit;
+    int diff_levels;      /* levels whose weights are not all zero */
+    float proxy_error;    /* world units: how far the proxy may stray from the mesh */
     GLenum mesh_index_type;
     shade_prog shade[JD_MODE_COUNT], a0;
     GLuint depth_prog, capture_prog, project_prog, reduce_faces_prog, reduce_final_prog, blur_prog, combine_prog;
-    GLint depth_mvp;
+    diff_prog diff_first, diff_next; /* level 1 from the light map; the others */
+    GLint depth_mvp, depth_light_dir, depth_f0;
     GLint cap_mvp, cap_light_mvp, cap_light_dir, cap_bias, cap_depth, cap_light_color;
     GLint proj_atlas, proj_texel, rf_src, rf_texel, rl_src, rl_texel;
     GLint blur_src, blur_step, blur_inv, blur_scale;
     GLint comb_src, comb_step, comb_inv, comb_a1, comb_w1, comb_w2, comb_scale;
     target light, atlas, sh1, sh2, sh3, spread0, spread_tmp, spread1, spread2;
+    target diff_tmp, diff_lv[DIFF_TEXTURES];
     size_t target_bytes;
     float box_half;
 };
 
 const char *jd_mode_name(jd_mode m)
 {
-    static const char *names[] = {"none", "single", "dual"};
+    static const char *names[] = {"none", "single", "dual", "full"};
     return m >= 0 && m < JD_MODE_COUNT ? names[m] : "?";
 }
 
@@ -86,7 +111,7 @@ int jd_mode_parse(const char *s, jd_mode *out)
 
 const char *jd_pass_name(int pass)
 {
-    static const char *names[] = {"light_depth", "capture", "sh_reduce", "spread", "main"};
+    static const char *names[] = {"light_depth", "capture", "sh_reduce", "spread", "diffusion", "main"};
     return pass >= 0 && pass < JD_PASS_COUNT ? names[pass] : "?";
 }
 
@@ -279,6 +304,37 @@ static void shade_locations(shade_prog *p)
     p->spread = glGetUniformLocation(id, "u_spread");
     p->inv_viewport = glGetUniformLocation(id, "u_inv_viewport");
     p->w0 = glGetUniformLocation(id, "u_w0");
+    p->light_map = glGetUniformLocation(id, "u_light_map");
+    p->shadow_bias = glGetUniformLocation(id, "u_shadow_bias");
+    for (int i = 0; i < DIFF_TEXTURES; i++) {
+        char name[16];
+        snprintf(name, sizeof name, "u_lv%d", i);
+        p->lv[i] = glGetUniformLocation(id, name);
+        snprintf(name, sizeof name, "u_lv%d_v", i);
+        p->lv_v[i] = glGetUniformLocation(id, name);
+    }
+    p->light_map_v = glGetUniformLocation(id, "u_light_map_v");
+    p->light_dir_v = glGetUniformLocation(id, "u_light_dir_v");
+    p->lw = glGetUniformLocation(id, "u_lw");
+    p->ls = glGetUniformLocation(id, "u_ls");
+    p->wl = glGetUniformLocation(id, "u_wl");
+}
+
+static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_error *err)
+{
+    char def[128];
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_TAPS %d\n#define JD_FIRST %d\n", r->highp, DIFF_TAPS,
+             first);
+    jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/diffuse_blur.frag", def, quad_attribs, &p->id, err);
+    if (res) return res;
+    p->src = glGetUniformLocation(p->id, "u_src");
+    p->ref = glGetUniformLocation(p->id, "u_ref");
+    p->ref_scale = glGetUniformLocation(p->id, "u_ref_scale");
+    p->step = glGetUniformLocation(p->id, "u_step");
+    p->inv_2s2 = glGetUniformLocation(p->id, "u_inv_2s2");
+    p->uv_scale = glGetUniformLocation(p->id, "u_uv_scale");
+    p->near = glGetUniformLocation(p->id, "u_near");
+    return JD_OK;
 }
 
 static jd_result build_programs(jd_renderer *r, jd_error *err)
@@ -287,11 +343,13 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     int n = r->d.cube_size, nb = n / SH_BLOCK;
     jd_result res;
     for (int m = 0; m < JD_MODE_COUNT; m++) {
+        int translucent = m == JD_MODE_SINGLE || m == JD_MODE_DUAL;
         snprintf(def, sizeof def,
                  "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
-                 "#define JD_VERTEX_THICKNESS %d\n",
-                 r->highp, m != JD_MODE_NONE, m == JD_MODE_DUAL, r->vertex_thickness);
-        int varyings = m == JD_MODE_NONE ? 2 : r->vertex_thickness ? 3 : 4; /* v_pos v_normal [v_light] v_trans */
+                 "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n",
+                 r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion);
+        /* v_pos v_normal v_shadow [v_light] [v_trans] [v_wide] */
+        int varyings = translucent ? (r->vertex_thickness ? 4 : 5) : 3 + (m == JD_MODE_FULL && r->vertex_diffusion);
         if ((res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
                          &r->shade[m].id, err)))
             return res;
@@ -299,16 +357,18 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     }
     snprintf(def, sizeof def,
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n"
-             "#define JD_VERTEX_THICKNESS %d\n",
+             "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL 0\n#define JD_VERTEX_DIFFUSION 0\n",
              r->highp, r->vertex_thickness);
-    if ((res = build(r, r->vertex_thickness ? 3 : 4, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
+    if ((res = build(r, r->vertex_thickness ? 4 : 5, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
                      mesh_attribs, &r->a0.id, err)))
         return res;
     shade_locations(&r->a0);
 
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n", r->highp);
-    if ((res = build(r, 1, "shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err))) return res;
+    if ((res = build(r, 2, "shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err))) return res;
     r->depth_mvp = glGetUniformLocation(r->depth_prog, "u_light_mvp");
+    r->depth_light_dir = glGetUniformLocation(r->depth_prog, "u_light_dir");
+    r->depth_f0 = glGetUniformLocation(r->depth_prog, "u_f0");
     if ((res = build(r, 2, "shaders_es2/capture.vert", "shaders_es2/capture.frag", def, mesh_attribs, &r->capture_prog, err)))
         return res;
     r->cap_mvp = glGetUniformLocation(r->capture_prog, "u_mvp");
@@ -350,6 +410,8 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     r->comb_w1 = glGetUniformLocation(r->combine_prog, "u_w1");
     r->comb_w2 = glGetUniformLocation(r->combine_prog, "u_w2");
     r->comb_scale = glGetUniformLocation(r->combine_prog, "u_uv_scale");
+    if ((res = build_diffusion(r, 1, &r->diff_first, err)) || (res = build_diffusion(r, 0, &r->diff_next, err)))
+        return res;
     return JD_OK;
 }
 
@@ -371,10 +433,16 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     if (!d->proxy_cells) d->proxy_cells = 40;
     if (!d->capture_cells) d->capture_cells = 24;
     if (!d->spread_divisor) d->spread_divisor = 8;
+    if (!d->diffusion_size) d->diffusion_size = d->light_map_size / 4;
     if (d->cube_size < 8 || d->cube_size > 256 || d->cube_size % SH_BLOCK)
         return jd_fail(err, JD_ERR_ARG, "cube size %d must be a multiple of %d from 8 to 256", d->cube_size, SH_BLOCK);
     if (d->light_map_size < 16 || d->light_map_size > 2048)
         return jd_fail(err, JD_ERR_ARG, "light map size %d must be 16..2048", d->light_map_size);
+    if (d->diffusion_size < 16 || d->diffusion_size > d->light_map_size)
+        return jd_fail(err, JD_ERR_ARG, "diffusion size %d must be 16..%d (the light map size)", d->diffusion_size,
+                       d->light_map_size);
+    if (d->diffusion_size & (d->diffusion_size - 1))
+        return jd_fail(err, JD_ERR_ARG, "diffusion size %d must be a power of two", d->diffusion_size);
     if (d->spread_divisor < 1 || d->spread_divisor > 16)
         return jd_fail(err, JD_ERR_ARG, "spread divisor %d must be 1..16", d->spread_divisor);
 
@@ -385,6 +453,8 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     /* Two vertex texture units (depth map and tail table) move A0 to the
      * vertex stage; none (Mali-400) keeps it per fragment. */
     r->vertex_thickness = !d->fragment_thickness && d->caps->max_vertex_texture_units >= 2;
+    /* The light map and the level textures. */
+    r->vertex_diffusion = !d->fragment_thickness && d->caps->max_vertex_texture_units >= 1 + DIFF_TEXTURES;
 
     if (d->mesh->index_size == 4 && !d->caps->ext_element_index_uint)
         return jd_fail(err, JD_ERR_UNSUPPORTED, "mesh needs 32-bit indices but OES_element_index_uint is missing");
@@ -400,6 +470,10 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     float radius;
     jd_mesh_placement(m, &c, &radius);
     r->box_half = 0.5f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius * 1.01f;
+    /* Vertex clustering moves a vertex by at most a cell's diagonal; the
+     * surface between, by about half of that. */
+    r->proxy_error = 0.87f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius / (float)d->proxy_cells;
+    r->fit_key[0] = -1.0f;
     while (glGetError() != GL_NO_ERROR) {}
     if ((res = upload_mesh(m, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err)) ||
         (res = upload_mesh(&r->proxy, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a, err)) ||
@@ -437,8 +511,13 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
         (res = make_target(r, &r->spread0, sw, shh, 1, 1, "spread A0", err)) ||
         (res = make_target(r, &r->spread_tmp, sw, shh, 0, 1, "spread blur", err)) ||
         (res = make_target(r, &r->spread1, sw, shh, 0, 1, "spread A1", err)) ||
-        (res = make_target(r, &r->spread2, sw, shh, 0, 1, "spread A2", err)))
+        (res = make_target(r, &r->spread2, sw, shh, 0, 1, "spread A2", err)) ||
+        (res = make_target(r, &r->diff_tmp, d->diffusion_size, d->light_map_size, 0, 0, "diffusion blur", err)))
         goto fail;
+    for (int i = 0; i < DIFF_TEXTURES; i++)
+        if ((res = make_target(r, &r->diff_lv[i], d->diffusion_size >> (i / 2), d->diffusion_size >> (i / 2), 0, 1,
+                               "diffusion level", err)))
+            goto fail;
     glBindFramebuffer(GL_FRAMEBUFFER, d->target_fbo);
     *out = r;
     return jd_renderer_resize(r, d->width, d->height, err);
@@ -450,15 +529,17 @@ fail:
 void jd_renderer_destroy(jd_renderer *r)
 {
     if (!r) return;
-    target *ts[] = {&r->light, &r->atlas, &r->sh1, &r->sh2, &r->sh3, &r->spread0, &r->spread_tmp, &r->spread1, &r->spread2};
+    target *ts[] = {&r->light,   &r->atlas,   &r->sh1,     &r->sh2, &r->sh3, &r->spread0, &r->spread_tmp,
+                    &r->spread1, &r->spread2, &r->diff_tmp};
     for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++) free_target(ts[i]);
+    for (int i = 0; i < DIFF_TEXTURES; i++) free_target(&r->diff_lv[i]);
     GLuint bufs[] = {r->mesh_vbo, r->mesh_ibo, r->proxy_vbo, r->proxy_ibo, r->cap_vbo, r->cap_ibo, r->quad_vbo};
     glDeleteBuffers(7, bufs);
     if (r->tail_tex) glDeleteTextures(1, &r->tail_tex);
     if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
     GLuint progs[] = {r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_faces_prog,
-                      r->reduce_final_prog, r->blur_prog, r->combine_prog};
+                      r->reduce_final_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
     memset(r, 0, sizeof *r);
 }
@@ -501,6 +582,7 @@ typedef struct frame_params {
     float w0[3], w1[3], w2[3];
     float inv_eta, inset;
     float mm_per_world, blur_sigma_px;
+    float light_map[4], shadow_bias[2];
     jd_sh9 sh;
 } frame_params;
 
@@ -554,6 +636,18 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
     f->shading[3] = sv.exposure;
     f->inv_eta = 1.0f / sv.eta;
     f->inset = 2.0f / (float)r->d.proxy_cells;
+    /* The light's ortho box is 2 world units on each side, depth included:
+     * light-depth units are world units / 2, a texel is 1/size of them. The
+     * shadow test moves the point towards the light by the proxy's error and
+     * by the depth one and a half texels span at the surface's slope. */
+    float lsz = (float)r->d.light_map_size;
+    f->light_map[0] = lsz;
+    f->light_map[1] = 1.0f / lsz;
+    f->light_map[2] = sv.f0;
+    float map_error = s->mode == JD_MODE_FULL ? 0.0f : r->proxy_error;
+    f->light_map[3] = 0.5f * map_error;
+    f->shadow_bias[0] = 1.5f / lsz;
+    f->shadow_bias[1] = 0.5f * map_error;
 
     /* The paper's spread width, sigma = 2 sigma_s, read as millimetres and
      * turned into pixels of the low-resolution buffer at the object's depth. */
@@ -588,6 +682,25 @@ static void update_tail(jd_renderer *r, const jd_scene *s, const frame_params *f
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, TAIL_SIZE, 1, GL_RGBA, GL_UNSIGNED_BYTE, r->tail_px);
 }
 
+/* The full mode's sum of Gaussians: the finest below a level texel (applied
+ * at the shaded point), then one per light-space level. Refitted only when
+ * the material or the scale changes. */
+static void update_fit(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    float key[9] = {s->sigma_s[0], s->sigma_s[1], s->sigma_s[2], s->sigma_a[0], s->sigma_a[1],
+                    s->sigma_a[2], s->eta, s->density, f->mm_per_world};
+    if (!memcmp(key, r->fit_key, sizeof key)) return;
+    memcpy(r->fit_key, key, sizeof key);
+    float texel_mm = 2.0f * f->mm_per_world / (float)r->d.diffusion_size;
+    float sigma[DIFF_LOCAL + DIFF_LEVELS] = {texel_mm / 16.0f, texel_mm / 5.0f, texel_mm / 2.0f};
+    for (int k = 0; k < DIFF_LEVELS; k++) sigma[DIFF_LOCAL + k] = texel_mm * (float)(1 << k);
+    jd_diffusion_fit_profile(&f->dipole, sigma, DIFF_LOCAL + DIFF_LEVELS, &r->fit);
+    r->diff_levels = 0;
+    for (int k = 0; k < DIFF_LEVELS; k++)
+        for (int c = 0; c < 3; c++)
+            if (r->fit.weight[DIFF_LOCAL + k][c] > 1e-5f) r->diff_levels = k + 1;
+}
+
 static void bind_mesh(GLuint vbo, GLuint ibo)
 {
     glBindBuffer(GL_ARRAY_BUFFER, vbo);
@@ -614,18 +727,27 @@ static void use_target(const target *t)
     glScissor(0, 0, t->w, t->h);
 }
 
-static void pass_light_depth(jd_renderer *r, const frame_params *f)
+/* From the proxy for shadows and thickness; from the mesh itself in full
+ * mode, whose levels compare depths at the scale of a millimetre. */
+static void pass_light_depth(jd_renderer *r, const frame_params *f, int full)
 {
     use_target(&r->light);
-    glClearColor(1, 0, 0, 1); /* packed 1.0: nothing in front */
+    glClearColor(1, 0, 0, 0); /* packed 1.0: nothing in front; no light */
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     /* Only surfaces facing the light can be the nearest to it. */
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
     glUseProgram(r->depth_prog);
     glUniformMatrix4fv(r->depth_mvp, 1, GL_FALSE, f->light_mvp.m);
-    bind_mesh(r->proxy_vbo, r->proxy_ibo);
-    glDrawElements(GL_TRIANGLES, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0);
+    glUniform3f(r->depth_light_dir, f->light_dir.x, f->light_dir.y, f->light_dir.z);
+    glUniform1f(r->depth_f0, f->f0);
+    if (full) {
+        bind_mesh(r->mesh_vbo, r->mesh_ibo);
+        glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
+    } else {
+        bind_mesh(r->proxy_vbo, r->proxy_ibo);
+        glDrawElements(GL_TRIANGLES, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0);
+    }
 }
 
 static void pass_capture(jd_renderer *r, const frame_params *f)
@@ -704,9 +826,37 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     glUniform3fv(p->albedo, 1, f->albedo);
     glUniform3fv(p->light_color, 1, f->light_color);
     glUniform4fv(p->shading, 1, f->shading);
+    glUniformMatrix4fv(p->light_mvp, 1, GL_FALSE, f->light_mvp.m);
+    glUniform4fv(p->light_map, 1, f->light_map);
+    glUniform2fv(p->shadow_bias, 1, f->shadow_bias);
+    if (p->depth >= 0) glUniform1i(p->depth, 0);
+    if (p->depth_v >= 0) glUniform1i(p->depth_v, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, r->light.tex);
+    if (p->wl >= 0) {
+        float lw[DIFF_LEVELS][3], ls[6] = {0}, wl[3] = {0};
+        const jd_diffusion_fit *fit = &r->fit;
+        for (int c = 0; c < 3; c++)
+            for (int k = 0; k < DIFF_LOCAL; k++) wl[c] += fit->weight[k][c];
+        for (int k = 0; k < DIFF_LEVELS; k++) {
+            for (int c = 0; c < 3; c++) lw[k][c] = k < r->diff_levels ? fit->weight[DIFF_LOCAL + k][c] : 0.0f;
+            /* Light-depth units to the level's sigma * sqrt(2), in millimetres. */
+            ls[k] = 2.0f * f->mm_per_world / (1.41421356f * fit->sigma_mm[DIFF_LOCAL + k]);
+        }
+        glUniform3fv(p->lw, DIFF_LEVELS, &lw[0][0]);
+        glUniform3fv(p->ls, 2, ls);
+        glUniform3fv(p->wl, 1, wl);
+        glUniform4fv(p->light_map_v, 1, f->light_map);
+        glUniform3f(p->light_dir_v, f->light_dir.x, f->light_dir.y, f->light_dir.z);
+        for (int i = 0; i < DIFF_TEXTURES; i++) {
+            glUniform1i(p->lv[i] >= 0 ? p->lv[i] : p->lv_v[i], 1 + i);
+            glActiveTexture(GL_TEXTURE1 + i);
+            glBindTexture(GL_TEXTURE_2D, r->diff_lv[i].tex);
+        }
+        glActiveTexture(GL_TEXTURE0);
+    }
     if (p->sh >= 0) {
         float hb = r->box_half;
-        glUniformMatrix4fv(p->light_mvp, 1, GL_FALSE, f->light_mvp.m);
         glUniform3fv(p->sh, 9, &f->sh.c[0][0]);
         glUniform3f(p->box_min, -hb, -hb, -hb);
         glUniform3f(p->box_max, hb, hb, hb);
@@ -714,12 +864,10 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         glUniform1f(p->inset, f->inset);
         glUniform3fv(p->a0_scale, 1, f->a0_scale);
         glUniform1f(p->f0, f->f0);
-        glUniform1i(p->depth >= 0 ? p->depth : p->depth_v, 0);
         glUniform1i(p->tail >= 0 ? p->tail : p->tail_v, 3);
         glActiveTexture(GL_TEXTURE3);
         glBindTexture(GL_TEXTURE_2D, r->tail_tex);
         glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, r->light.tex);
     }
     if (p->spread >= 0) {
         glUniform1i(p->spread, 1);
@@ -781,6 +929,56 @@ static void pass_spread(jd_renderer *r, const frame_params *f)
     glBindTexture(GL_TEXTURE_2D, r->spread1.tex);
     glActiveTexture(GL_TEXTURE0);
     blur(r, r->comb_step, r->comb_inv, &r->spread_tmp, &r->spread2, 0, 1, step, inv2s2);
+}
+
+/* The full mode's light-space levels: level k is level k-1 blurred by the
+ * Gaussian whose variance brings it to sigma_k (variances add), so every
+ * step is short; level 1 comes from the light-depth map. A horizontal pass
+ * into diff_tmp (the destination's width, the source's height), a vertical
+ * one into the level's texture. Sigmas are counted in texels of the first
+ * level; texture k has 2^(k/2) of those per texel. */
+static void pass_diffusion(jd_renderer *r, const frame_params *f)
+{
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    bind_quad(r);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, r->light.tex);
+    glActiveTexture(GL_TEXTURE0);
+    /* Light-depth units per first-level texel: the map spans 2 world units
+     * across and 2 in depth, so units of width and depth are alike. */
+    float texel = 1.0f / (float)r->d.diffusion_size, map_texel = 1.0f / (float)r->d.light_map_size;
+    float prev = 0.0f;
+    for (int k = 0; k < r->diff_levels; k++) {
+        float sigma = (float)(1 << k);
+        float inc = sqrtf(sigma * sigma - prev * prev);
+        prev = sigma;
+        const target *src = k == 0 ? &r->light : &r->diff_lv[k - 1];
+        target *dst = &r->diff_lv[k], *tmp = &r->diff_tmp;
+        /* First-level texels per source texel. */
+        float per_src = k == 0 ? (float)r->d.diffusion_size / (float)r->d.light_map_size : (float)(1 << ((k - 1) / 2));
+        float sig = inc / per_src; /* in source texels, also tmp's rows */
+        float step = fmaxf(sig * 3.0f / DIFF_TAPS, 1.0f), st = sig / step;
+        /* Light within 1.5 sigma (and two map texels) of a texel's own
+         * surface in depth is that surface's; the rest came from elsewhere. */
+        float near = 1.5f * sigma * texel + 2.0f * map_texel + f->light_map[3];
+        tmp->w = dst->w;
+        tmp->h = src->h;
+        for (int pass = 0; pass < 2; pass++) {
+            const diff_prog *p = k == 0 && pass == 0 ? &r->diff_first : &r->diff_next;
+            const target *from = pass ? tmp : src, *to = pass ? dst : tmp;
+            glUseProgram(p->id);
+            glUniform1i(p->src, 0);
+            glUniform1i(p->ref, 1);
+            glUniform2f(p->ref_scale, 1.0f / (float)to->w, 1.0f / (float)to->h);
+            glUniform2f(p->uv_scale, (float)from->w / from->tw, (float)from->h / from->th);
+            glUniform2f(p->step, pass ? 0.0f : step / (float)from->tw, pass ? step / (float)from->th : 0.0f);
+            glUniform1f(p->inv_2s2, 1.0f / (2.0f * st * st));
+            glUniform1f(p->near, near);
+            glBindTexture(GL_TEXTURE_2D, from->tex);
+            draw_quad_into(r, to);
+        }
+    }
 }
 
 static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
@@ -845,11 +1043,18 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     /* Packed values must reach RGBA8 bit-exact: GL enables dithering by default. */
     glDisable(GL_DITHER);
     glEnable(GL_SCISSOR_TEST);
-    if (s->mode != JD_MODE_NONE) {
+    /* Every mode shadows its direct light with the light-depth map. */
+    gpu_begin(r, stats, JD_PASS_LIGHT_DEPTH);
+    pass_light_depth(r, &f, s->mode == JD_MODE_FULL);
+    lap(r, stats, JD_PASS_LIGHT_DEPTH, &t);
+    if (s->mode == JD_MODE_FULL) {
+        update_fit(r, s, &f);
+        gpu_begin(r, stats, JD_PASS_DIFFUSION);
+        pass_diffusion(r, &f);
+        lap(r, stats, JD_PASS_DIFFUSION, &t);
+    }
+    if (s->mode == JD_MODE_SINGLE || s->mode == JD_MODE_DUAL) {
         update_tail(r, s, &f);
-        gpu_begin(r, stats, JD_PASS_LIGHT_DEPTH);
-        pass_light_depth(r, &f);
-        lap(r, stats, JD_PASS_LIGHT_DEPTH, &t);
         gpu_begin(r, stats, JD_PASS_CAPTURE);
         pass_capture(r, &f);
         lap(r, stats, JD_PASS_CAPTURE, &t);

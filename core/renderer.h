@@ -8,7 +8,11 @@
 #include "material.h"
 #include "mesh.h"
 
-typedef enum jd_mode { JD_MODE_NONE = 0, JD_MODE_SINGLE, JD_MODE_DUAL, JD_MODE_COUNT } jd_mode;
+/* none: direct light, shadowed; single: + the SCCG 2006 translucent layer;
+ * dual: + the spread funnel (the paper); full: the direct light diffused under
+ * the surface with the dipole's profile (jade's own, measured against
+ * jade reference). */
+typedef enum jd_mode { JD_MODE_NONE = 0, JD_MODE_SINGLE, JD_MODE_DUAL, JD_MODE_FULL, JD_MODE_COUNT } jd_mode;
 typedef enum jd_precision { JD_PRECISION_AUTO = 0, JD_PRECISION_HIGHP, JD_PRECISION_MEDIUMP } jd_precision;
 
 const char *jd_mode_name(jd_mode m);
@@ -27,6 +31,7 @@ typedef struct jd_renderer_desc {
     int proxy_cells;      /* [40] vertex-clustering grid of the proxy mesh */
     int capture_cells;    /* [24] coarser proxy for the cube capture */
     int spread_divisor;   /* [8] spread layers at 1/N resolution */
+    int diffusion_size;   /* [light_map_size / 2] texels per side of the full mode's light-space levels */
     jd_precision precision; /* [from the device's fragment highp support] */
     int no_cull;          /* draw back faces too (open meshes) */
     int fragment_thickness; /* read thickness per fragment even where the
@@ -69,7 +74,7 @@ typedef struct jd_scene_view {
 } jd_scene_view;
 void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, jd_scene_view *v);
 
-enum { JD_PASS_LIGHT_DEPTH, JD_PASS_CAPTURE, JD_PASS_SH, JD_PASS_SPREAD, JD_PASS_MAIN, JD_PASS_COUNT };
+enum { JD_PASS_LIGHT_DEPTH, JD_PASS_CAPTURE, JD_PASS_SH, JD_PASS_SPREAD, JD_PASS_DIFFUSION, JD_PASS_MAIN, JD_PASS_COUNT };
 const char *jd_pass_name(int pass);
 
 typedef struct jd_frame_stats {

@@ -1,6 +1,9 @@
 #version 100
 varying float v_depth;
+varying float v_irr;
 void main()
 {
-    gl_FragColor = jd_pack(v_depth);
+    // Depth in the colour channels (two or three bytes, jd_pack), the
+    // irradiance in alpha, which the packing leaves free.
+    gl_FragColor = vec4(jd_pack(v_depth).rgb, v_irr);
 }

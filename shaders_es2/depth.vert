@@ -1,10 +1,23 @@
 #version 100
-// Light-space depth, linear (orthographic light), normalised to the object.
+// Light-space depth, linear (orthographic light), normalised to the object;
+// and the irradiance the lit surface takes in, for the full mode's diffusion.
 attribute vec3 a_position;
+attribute vec3 a_normal;
 uniform mat4 u_light_mvp;
+uniform vec3 u_light_dir;
+uniform float u_f0;          // Schlick reflectance at normal incidence
 varying float v_depth;
+varying float v_irr;
 void main()
 {
     gl_Position = u_light_mvp * vec4(a_position, 1.0);
     v_depth = gl_Position.z * 0.5 + 0.5;
+    // N.L Ft(N.L) / c, c = (1 - F0) 20/21 the hemispherical mean of Ft: the
+    // reference's irradiance per unit area of surface. At most 21/20: stored
+    // over that, as a square root, so dim light keeps its precision in 8 bits.
+    float ndl = max(dot(normalize(a_normal), u_light_dir), 0.0);
+    float x = 1.0 - ndl;
+    float x2 = x * x;
+    float ft = (1.0 - (u_f0 + (1.0 - u_f0) * x2 * x2 * x)) / ((1.0 - u_f0) * (20.0 / 21.0));
+    v_irr = sqrt(clamp(ndl * ft * (20.0 / 21.0), 0.0, 1.0));
 }

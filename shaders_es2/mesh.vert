@@ -8,8 +8,32 @@ attribute vec3 a_normal;
 uniform mat4 u_mvp;
 uniform mat4 u_light_mvp;
 uniform mediump vec3 u_eye; // shared with the fragment stage: precisions must match
+uniform vec2 u_shadow_bias;  // light-depth units: per unit of the surface's slope to the light, and always
 varying vec3 v_pos;
 varying vec3 v_normal;
+// Where the point falls in the light-depth map, moved towards the light so
+// that the map (drawn from a coarser proxy, in texels) does not shadow the
+// surface it was drawn from: by the proxy's error, and by the depth a texel
+// spans where the surface slopes away from the light (tan theta). Only in
+// depth: moving it sideways would move the edges of cast shadows.
+// w: the surface's own light depth.
+varying vec4 v_shadow;
+#if JD_FULL && JD_VERTEX_DIFFUSION
+// Where the vertex stage can read textures, the full mode's light-space
+// levels (smooth by construction: their finest Gaussian is a level texel
+// wide) are summed per vertex; the fragment stage keeps the local part.
+uniform sampler2D u_depth_v;
+uniform sampler2D u_lv0_v;
+uniform sampler2D u_lv1_v;
+uniform sampler2D u_lv2_v;
+uniform sampler2D u_lv3_v;
+uniform sampler2D u_lv4_v;
+uniform vec4 u_light_map_v;  // as the fragment stage's u_light_map
+uniform vec3 u_light_dir_v;
+uniform vec3 u_lw[5];
+uniform vec3 u_ls[2];
+varying vec3 v_wide;
+#endif
 #if JD_TRANSLUCENT
 uniform vec3 u_sh[9];
 uniform vec3 u_box_min;
@@ -45,6 +69,19 @@ void main()
     v_pos = a_position;
     v_normal = a_normal;
     gl_Position = u_mvp * vec4(a_position, 1.0);
+    vec4 sp = u_light_mvp * vec4(a_position, 1.0);
+    v_shadow = vec4(sp.xyz * 0.5 + 0.5, sp.z * 0.5 + 0.5);
+    // The light looks down its +z: a normal facing it has a negative z there.
+    float cl = clamp(abs((u_light_mvp * vec4(normalize(a_normal), 0.0)).z), 0.2, 1.0);
+    v_shadow.z -= u_shadow_bias.y + u_shadow_bias.x * (1.0 + sqrt(1.0 - cl * cl) / cl);
+#if JD_FULL && JD_VERTEX_DIFFUSION
+    vec3 nv = normalize(a_normal);
+    if (dot(nv, u_eye - a_position) < 0.0) nv = -nv;
+    float ndl = dot(nv, u_light_dir_v);
+    float vis = ndl > 0.0 ? jd_lit_fraction(u_depth_v, v_shadow.xyz, u_light_map_v.xy) : 0.0;
+    v_wide = jd_diffused(u_lv0_v, u_lv1_v, u_lv2_v, u_lv3_v, u_lv4_v, v_shadow.xyw, u_lw, u_ls, u_light_map_v.w,
+                         vis * clamp(4.0 * ndl, 0.0, 1.0));
+#endif
 #if JD_TRANSLUCENT
     vec3 n = normalize(a_normal);
     vec3 view = normalize(u_eye - a_position);

@@ -1,18 +1,24 @@
 #version 100
-// The visible surface: Lambert + Blinn-Phong, plus in translucent modes the
+// The visible surface. none, single, dual: Lambert + Blinn-Phong with the
+// direct light shadowed by the light-depth map, plus in translucent modes the
 // transmitted layer A0 = K Ft (1-Fdr)/pi M(t) E(d), and in dual mode the two
-// spread layers, blended per channel before tone mapping.
+// spread layers, blended per channel before tone mapping. full: the
+// reference's model, Ft(wo)/c * Mo with Mo the directly lit irradiance
+// diffused with the dipole's profile (a local part here, the wider Gaussians
+// from the light-space levels).
 precision mediump float;
 uniform vec3 u_light_dir;
 uniform vec3 u_eye;
-uniform vec3 u_albedo;
+uniform vec3 u_albedo;       // Rd_total
 uniform vec3 u_light_color;
 uniform vec4 u_shading;      // ambient, specular, shininess, exposure
+uniform vec4 u_light_map;    // light-depth texels per side, their inverse, Schlick F0, depth slack of the proxy
+uniform sampler2D u_depth;   // light depth, packed; irradiance in alpha
 varying vec3 v_pos;
 varying vec3 v_normal;
+varying vec4 v_shadow;
 #if JD_TRANSLUCENT
 #if !JD_VERTEX_THICKNESS
-uniform sampler2D u_depth;
 uniform sampler2D u_tail;    // sqrt of the dipole tail M(t)/M-scale, t across [0, range]
 varying vec3 v_light;
 #endif
@@ -22,6 +28,34 @@ varying vec3 v_trans;
 uniform sampler2D u_spread;  // sqrt((w1 A1 + w2 A2) / 2), alpha = covered
 uniform vec2 u_inv_viewport;
 uniform vec3 u_w0;
+#endif
+#if JD_FULL
+uniform vec3 u_wl;           // Rd's weight on the Gaussians finer than a level texel
+#if JD_VERTEX_DIFFUSION
+varying vec3 v_wide;         // the levels' light, per vertex (jd_diffused)
+#else
+// The five light-space levels: sqrt(S / (21/20)) and mean depth of the
+// light that entered near the map's surface (RG) and elsewhere (BA).
+uniform sampler2D u_lv0;
+uniform sampler2D u_lv1;
+uniform sampler2D u_lv2;
+uniform sampler2D u_lv3;
+uniform sampler2D u_lv4;
+uniform vec3 u_lw[5];        // Rd's weight on each level's Gaussian, per channel
+uniform vec3 u_ls[2];        // per level: depth units to sigma_k sqrt(2), levels 1-3 and 4-5
+#endif
+#endif
+
+#if JD_FULL
+// Schlick transmittance over its hemispherical mean c = (1 - F0) 20/21.
+float fresnel_tc(float cosv)
+{
+    float x = 1.0 - clamp(cosv, 0.0, 1.0);
+    float x2 = x * x;
+    float f0 = u_light_map.z;
+    return (1.0 - (f0 + (1.0 - f0) * x2 * x2 * x)) / ((1.0 - f0) * (20.0 / 21.0));
+}
+
 #endif
 
 #if JD_TRANSLUCENT
@@ -52,9 +86,22 @@ void main()
     gl_FragColor = vec4(0.5 * translucency(), 1.0);
 #else
     float ndl = max(dot(n, u_light_dir), 0.0);
+    float vis = ndl > 0.0 ? jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy) : 0.0;
     vec3 h = normalize(u_light_dir + v);
-    float spec = ndl > 0.0 ? pow(max(dot(n, h), 0.0), u_shading.z) : 0.0;
-    vec3 col = u_albedo * (u_shading.x + ndl * u_light_color) + u_shading.y * spec * u_light_color;
+    float spec = ndl > 0.0 ? vis * pow(max(dot(n, h), 0.0), u_shading.z) : 0.0;
+#if JD_FULL
+#if JD_VERTEX_DIFFUSION
+    vec3 wide = v_wide;
+#else
+    vec3 wide = jd_diffused(u_lv0, u_lv1, u_lv2, u_lv3, u_lv4, v_shadow.xyw, u_lw, u_ls, u_light_map.w,
+                            vis * clamp(4.0 * ndl, 0.0, 1.0));
+#endif
+    vec3 mo = u_albedo * u_shading.x
+            + u_light_color * (u_wl * (ndl * fresnel_tc(ndl) * vis) + wide);
+    vec3 col = fresnel_tc(dot(n, v)) * mo + u_shading.y * spec * u_light_color;
+#else
+    vec3 col = u_albedo * (u_shading.x + ndl * vis * u_light_color) + u_shading.y * spec * u_light_color;
+#endif
 #if JD_TRANSLUCENT
     vec3 a0 = translucency();
 #if JD_SPREAD

@@ -30,7 +30,7 @@ expect "unknown flag" 2 "unknown option '--colour'" -- "$jade" render --colour r
 expect "missing value" 2 "needs a value" -- "$jade" render --size
 expect "bad size" 2 "expected WxH" -- "$jade" render --size 12xabc
 expect "size out of range" 2 "expected WxH" -- "$jade" render --size 99999x2
-expect "bad mode" 2 "none, single or dual" -- "$jade" render --mode triple
+expect "bad mode" 2 "none, single, dual or full" -- "$jade" render --mode triple
 expect "bad material" 2 "unknown material 'jelly'" -- "$jade" render --material jelly
 expect "bad number" 2 "expected a number" -- "$jade" render --eta 1.3x
 expect "nan number" 2 "expected a number" -- "$jade" render --eta nan
@@ -45,7 +45,7 @@ left=$(ls "$tmp" | grep -c '\.tmp\.' || true)
 if [ ! -e "$tmp/x.png" ] && [ "$left" -eq 0 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: a failed run left output behind"; ls "$tmp"; fi
 expect "render default" 0 "wrote $tmp/ok.png" -- "$jade" render --size 96x64 --out "$tmp/ok.png"
 if [ -s "$tmp/ok.png" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: no PNG written"; fi
-expect "sheet" 0 "none | single | dual" -- "$jade" render --size 64x64 --sheet "$tmp/sheet.png"
+expect "sheet" 0 "none | single | dual | full" -- "$jade" render --size 64x64 --sheet "$tmp/sheet.png"
 expect "info" 0 "fragment highp" -- "$jade" info
 expect "metric same" 0 '"ssim": 1.00000' -- "$jade" metric "$tmp/ok.png" "$tmp/ok.png"
 expect "metric one picture" 2 "needs two pictures" -- "$jade" metric "$tmp/ok.png"
@@ -65,7 +65,7 @@ if grep -q "reference" "$tmp/err" && [ -s "$tmp/ref.pfm" ]; then pass=$((pass + 
 else fail=$((fail + 1)); echo "FAIL: no progress on stderr or no PFM"; fi
 expect "metric against the reference" 0 '"pixels": [1-9]' -- "$jade" metric "$tmp/ok.png" "$tmp/ref.png" --mask "$tmp/mask.png"
 expect "metric against the PFM" 0 '"ssim"' -- "$jade" metric "$tmp/ok.png" "$tmp/ref.pfm" --mask "$tmp/mask.png"
-expect "sheet with reference" 0 "reference | none | single | dual" -- \
+expect "sheet with reference" 0 "reference | none | single | dual | full" -- \
     "$jade" render --size 96x64 --sheet "$tmp/sheet4.png" --sheet-reference "$tmp/ref.png"
 expect "sheet reference wrong size" 1 "not the size" -- \
     "$jade" render --size 64x64 --sheet "$tmp/sheet5.png" --sheet-reference "$tmp/ref.png"

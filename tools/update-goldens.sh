@@ -5,7 +5,7 @@ set -eu
 cd "$(dirname "$0")/.."
 cmake --build build >/dev/null
 sh tests/encode_bunny.sh ../shared build/testdata/bunny.drc
-for mode in none single dual; do
+for mode in none single dual full; do
     for mat in marble skin1 ketchup; do
         ./build/jade render --mesh build/testdata/bunny.drc --out "tests/golden/bunny_${mode}_${mat}.png" \
             --size 256x256 --mode "$mode" --material "$mat" --cam-azimuth 20 --precision highp \

@@ -1,0 +1,52 @@
+// What the shading passes ask of the light-depth map and of the full mode's
+// light-space levels, the same in the vertex and the fragment stage.
+
+// Percentage-closer filtering: the four nearest texels of the light depth
+// compared with the point l (light-map xy, depth), the answers (not the
+// depths) mixed bilinearly. size: texels per side and their inverse.
+float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
+{
+    vec2 tc = l.xy * size.x - 0.5;
+    vec2 f = fract(tc);
+    vec2 b = (floor(tc) + 0.5) * size.y;
+    float d = size.y;
+    float s00 = step(l.z, jd_unpack(texture2D(depth, b)));
+    float s10 = step(l.z, jd_unpack(texture2D(depth, b + vec2(d, 0.0))));
+    float s01 = step(l.z, jd_unpack(texture2D(depth, b + vec2(0.0, d))));
+    float s11 = step(l.z, jd_unpack(texture2D(depth, b + vec2(d, d))));
+    return mix(mix(s00, s10, f.x), mix(s01, s11, f.x), f.y);
+}
+
+// One part of one level's light at a point of light depth zo: S convolved
+// with the level's Gaussian in the light's plane (e = sqrt(S / (21/20))),
+// times the Gaussian of the depth between the point and where that light
+// entered (z, its S-weighted mean depth): G(r) of a 3-D distance factors
+// into the two. s: light-depth units over sigma sqrt(2). slack: the map's
+// own error in depth.
+float jd_level_part(float e, float z, float zo, float s, float slack)
+{
+    float q = max(abs(zo - z) - slack, 0.0) * s;
+    return e * e * exp(-q * q);
+}
+
+// A level: its shallower and its deeper part. A point the light reaches
+// (lit = 1) is itself on the map's surface, the part nearer its depth; that
+// surface runs away from the light by sigma tan(theta) within the level's
+// reach: no path through the material, so that part's depth term is 1.
+float jd_level(vec4 l, vec3 p, float s, float slack, float lit)
+{
+    float a = jd_level_part(l.r, l.g, p.z, s, slack), b = jd_level_part(l.b, l.a, p.z, s, slack);
+    return abs(p.z - l.g) < abs(p.z - l.a) ? mix(a, l.r * l.r, lit) + b : a + mix(b, l.b * l.b, lit);
+}
+
+// The levels' sum at light-map position p (xy, depth): Rd's weight on each
+// level's Gaussian (w, per channel) times the level's light.
+vec3 jd_diffused(sampler2D lv0, sampler2D lv1, sampler2D lv2, sampler2D lv3, sampler2D lv4, vec3 p, vec3 w[5],
+                 vec3 s[2], float slack, float lit)
+{
+    return (21.0 / 20.0) * (w[0] * jd_level(texture2D(lv0, p.xy), p, s[0].x, slack, lit)
+                          + w[1] * jd_level(texture2D(lv1, p.xy), p, s[0].y, slack, lit)
+                          + w[2] * jd_level(texture2D(lv2, p.xy), p, s[0].z, slack, lit)
+                          + w[3] * jd_level(texture2D(lv3, p.xy), p, s[1].x, slack, lit)
+                          + w[4] * jd_level(texture2D(lv4, p.xy), p, s[1].y, slack, lit));
+}
