@@ -1,19 +1,42 @@
 #!/bin/sh
 # Installs what jade needs on Debian 12, skipping what is already there.
 # As root it runs apt-get; otherwise it prints the exact command and stops.
+#
+# A package source that fails is reported as such, by name. What jade cannot
+# build without (compiler, EGL/GLES, Draco, stb) stops the run; the rest
+# (the X11 and DRM/KMS platforms, the GLSL validator, Xvfb) is left out with
+# the reason, and the build and tests that do not need it go on: CMake
+# leaves out a platform whose library is missing, and the tests that need a
+# missing tool say they are skipped.
 set -eu
-pkgs="build-essential cmake pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
-      libdraco-dev draco libstb-dev libgbm-dev libdrm-dev libx11-dev glslang-tools xvfb"
+here=$(dirname "$0")
+. "$here/apt-source.sh"
+required="build-essential cmake pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libdraco-dev draco
+          libstb-dev"
+optional="libgbm-dev libdrm-dev libx11-dev glslang-tools xvfb"
 # shellcheck disable=SC2086
-missing=$("$(dirname "$0")/missing-packages.sh" $pkgs)
-[ -z "$missing" ] && exit 0
+missing_req=$("$here/missing-packages.sh" $required)
+# shellcheck disable=SC2086
+missing_opt=$("$here/missing-packages.sh" $optional)
+[ -z "$missing_req$missing_opt" ] && exit 0
 if [ "$(id -u)" -ne 0 ]; then
-    echo "jade needs these Debian packages:$missing"
-    echo "run: sudo apt-get update && sudo apt-get install -y$missing"
+    echo "jade needs these Debian packages:$missing_req$missing_opt"
+    echo "run: sudo apt-get update && sudo apt-get install -y$missing_req$missing_opt"
     exit 1
 fi
-echo "installing:$missing"
 export DEBIAN_FRONTEND=noninteractive
-apt-get update -qq
-# shellcheck disable=SC2086
-apt-get install -y -qq --no-install-recommends $missing >/dev/null
+jd_apt_update "$(dpkg --print-architecture)"
+broken=$(jd_apt_index_failure "$(dpkg --print-architecture)")
+[ -n "$broken" ] && echo "setup: a package index failed ($broken); going on with the indexes apt has"
+if [ -n "$missing_req" ]; then
+    # shellcheck disable=SC2086
+    if ! jd_apt_install "" $missing_req; then
+        echo "setup: the package source failed for packages jade cannot build without:$missing_req"
+        echo "setup: apt says: $(jd_apt_last_error)"
+        exit 1
+    fi
+fi
+for p in $missing_opt; do
+    jd_apt_install "" "$p" >/dev/null ||
+        echo "skipped: $p (package source failed: $(jd_apt_last_error)); what needs it is left out"
+done
