@@ -83,6 +83,59 @@ void jd_mesh_fix_normals(jd_mesh *m)
     normalize_all(m);
 }
 
+static void corner(const jd_mesh *m, uint32_t t, int k, double p[3])
+{
+    const float *v = m->positions + 3 * (size_t)jd_mesh_index(m, t + (uint32_t)k);
+    p[0] = v[0] - 0.5 * ((double)m->bmin.x + m->bmax.x);
+    p[1] = v[1] - 0.5 * ((double)m->bmin.y + m->bmax.y);
+    p[2] = v[2] - 0.5 * ((double)m->bmin.z + m->bmax.z);
+}
+
+int jd_mesh_orient_outward(jd_mesh *m)
+{
+    /* Six times the signed volume: the sum of a . (b x c) over the faces. */
+    double vol6 = 0, a[3], b[3], c[3];
+    for (uint32_t t = 0; t + 2 < m->num_indices; t += 3) {
+        corner(m, t, 0, a);
+        corner(m, t, 1, b);
+        corner(m, t, 2, c);
+        vol6 += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    double box = ((double)m->bmax.x - m->bmin.x) * ((double)m->bmax.y - m->bmin.y) * ((double)m->bmax.z - m->bmin.z);
+    if (!(vol6 < -0.06 * box)) return 0;
+    for (uint32_t t = 0; t + 2 < m->num_indices; t += 3) {
+        if (m->index_size == 2) {
+            uint16_t *ix = (uint16_t *)m->indices + t, s = ix[1];
+            ix[1] = ix[2];
+            ix[2] = s;
+        } else {
+            uint32_t *ix = (uint32_t *)m->indices + t, s = ix[1];
+            ix[1] = ix[2];
+            ix[2] = s;
+        }
+    }
+    return 1;
+}
+
+int jd_mesh_normals_follow_winding(jd_mesh *m)
+{
+    double agree = 0, a[3], b[3], c[3];
+    for (uint32_t t = 0; t + 2 < m->num_indices; t += 3) {
+        corner(m, t, 0, a);
+        corner(m, t, 1, b);
+        corner(m, t, 2, c);
+        double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double fn[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        for (int k = 0; k < 3; k++) {
+            const float *n = m->normals + 3 * (size_t)jd_mesh_index(m, t + (uint32_t)k);
+            agree += fn[0] * n[0] + fn[1] * n[1] + fn[2] * n[2];
+        }
+    }
+    if (!(agree < 0)) return 0;
+    for (uint32_t i = 0; i < 3 * m->num_vertices; i++) m->normals[i] = -m->normals[i];
+    return 1;
+}
+
 jd_result jd_mesh_set_indices(jd_mesh *m, const uint32_t *idx, uint32_t count, int allow_32,
                               jd_arena *a, jd_error *err)
 {

@@ -30,6 +30,14 @@ void jd_mesh_placement(const jd_mesh *m, jd_vec3 *centre, float *radius);
 void jd_mesh_compute_normals(jd_mesh *m);
 /* Normalises normals read from a file; zero or non-finite ones are recomputed. */
 void jd_mesh_fix_normals(jd_mesh *m);
+/* Turns a mesh wound inside out (its enclosed volume negative by more than
+ * 1% of its box: open sheets are left alone) the right way round, so back
+ * faces are culled and the light enters from outside. Returns 1 if it did.
+ * Call before the normals are computed from the winding. */
+int jd_mesh_orient_outward(jd_mesh *m);
+/* Points the normals the way the winding faces, where most of them point
+ * against it (a file whose normals and faces disagree). Returns 1 if it did. */
+int jd_mesh_normals_follow_winding(jd_mesh *m);
 
 /* Copies 32-bit indices into the mesh, narrowing to 16 bits when every vertex
  * fits; otherwise keeps 32 bits if allow_32 (the caller checked

@@ -275,13 +275,17 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
     }
     r = jd_mesh_validate(out, d.path, err);
     if (r) goto fail;
+    jd_mesh_compute_bounds(out);
+    /* Culling and the light map take the winding for the outside; shading
+     * takes the normals: both are made to agree with the enclosed volume. */
+    jd_mesh_orient_outward(out);
     if (h.flags & JD_DRACO_HAS_NORMALS) {
         jd_mesh_fix_normals(out);
+        jd_mesh_normals_follow_winding(out);
     } else {
         jd_mesh_compute_normals(out);
         out->normals_computed = 1;
     }
-    jd_mesh_compute_bounds(out);
     jd_arena_top_reset(a, top);
     if (stats) *stats = st;
     return JD_OK;

@@ -82,6 +82,36 @@ static void test_mesh(void)
           "32-bit indices refused without the extension: %s", err.msg);
 }
 
+/* A cube wound inside out is turned round; its normals, from a file that
+ * agrees with the old winding, follow; a flat sheet is left as it is. */
+static void test_orientation(void)
+{
+    float pos[8 * 3], nrm[8 * 3];
+    for (int i = 0; i < 8; i++) {
+        pos[3 * i] = (float)(i & 1);
+        pos[3 * i + 1] = (float)((i >> 1) & 1);
+        pos[3 * i + 2] = (float)((i >> 2) & 1);
+        for (int k = 0; k < 3; k++) nrm[3 * i + k] = -(pos[3 * i + k] - 0.5f); /* inward, as the winding below */
+    }
+    /* Outward faces of the unit cube, then every triangle reversed. */
+    static const uint16_t out[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                                     2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    uint16_t in[36];
+    for (int t = 0; t < 36; t += 3) { in[t] = out[t]; in[t + 1] = out[t + 2]; in[t + 2] = out[t + 1]; }
+    jd_mesh m = {.num_vertices = 8, .num_indices = 36, .positions = pos, .normals = nrm, .indices = in, .index_size = 2};
+    jd_mesh_compute_bounds(&m);
+    CHECK(jd_mesh_orient_outward(&m) == 1, "an inside-out cube is turned round");
+    CHECK(memcmp(in, out, sizeof in) == 0, "to the outward winding");
+    CHECK(jd_mesh_orient_outward(&m) == 0, "an outward cube is left alone");
+    CHECK(jd_mesh_normals_follow_winding(&m) == 1 && nrm[0] < 0 && nrm[21] > 0, "inward normals follow the winding");
+    CHECK(jd_mesh_normals_follow_winding(&m) == 0, "agreeing normals are left alone");
+    float sheet[4 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    uint16_t tri[6] = {0, 2, 1, 1, 2, 3};
+    jd_mesh s = {.num_vertices = 4, .num_indices = 6, .positions = sheet, .normals = nrm, .indices = tri, .index_size = 2};
+    jd_mesh_compute_bounds(&s);
+    CHECK(jd_mesh_orient_outward(&s) == 0, "an open sheet keeps its winding");
+}
+
 static void test_materials(void)
 {
     /* The table's last column, Rd total (Jensen et al. 2001). */
@@ -155,6 +185,7 @@ int main(void)
     test_arena();
     test_math();
     test_mesh();
+    test_orientation();
     test_materials();
     test_draco_header();
     test_sh();
