@@ -843,6 +843,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
             /* Light-depth units to the level's sigma * sqrt(2), in millimetres. */
             ls[k] = 2.0f * f->mm_per_world / (1.41421356f * fit->sigma_mm[DIFF_LOCAL + k]);
         }
+        ls[5] = (float)r->d.diffusion_size; /* the spare slot: the first level's texels per side */
         glUniform3fv(p->lw, DIFF_LEVELS, &lw[0][0]);
         glUniform3fv(p->ls, 2, ls);
         glUniform3fv(p->wl, 1, wl);

@@ -39,13 +39,32 @@ float jd_level(vec4 l, vec3 p, float s, float slack, float lit)
     return abs(p.z - l.g) < abs(p.z - l.a) ? mix(a, l.r * l.r, lit) + b : a + mix(b, l.b * l.b, lit);
 }
 
-// The levels' sum at light-map position p (xy, depth): Rd's weight on each
-// level's Gaussian (w, per channel) times the level's light.
-vec3 jd_diffused(sampler2D lv0, sampler2D lv1, sampler2D lv2, sampler2D lv3, sampler2D lv4, vec3 p, vec3 w[5],
-                 vec3 s[2], float slack, float lit)
+// A level read at p texel by texel, each texel's parts weighed against the
+// point's depth before they are mixed: filtering the texels' depths first
+// would make depths that no light entered at, and where one passes through
+// the point's depth a bright line would follow it. n: texels per side.
+float jd_level_at(sampler2D lv, vec3 p, float n, float s, float slack, float lit)
 {
-    return (21.0 / 20.0) * (w[0] * jd_level(texture2D(lv0, p.xy), p, s[0].x, slack, lit)
-                          + w[1] * jd_level(texture2D(lv1, p.xy), p, s[0].y, slack, lit)
+    vec2 tc = p.xy * n - 0.5;
+    vec2 f = fract(tc);
+    vec2 b = (floor(tc) + 0.5) / n;
+    float d = 1.0 / n;
+    float l00 = jd_level(texture2D(lv, b), p, s, slack, lit);
+    float l10 = jd_level(texture2D(lv, b + vec2(d, 0.0)), p, s, slack, lit);
+    float l01 = jd_level(texture2D(lv, b + vec2(0.0, d)), p, s, slack, lit);
+    float l11 = jd_level(texture2D(lv, b + vec2(d, d)), p, s, slack, lit);
+    return mix(mix(l00, l10, f.x), mix(l01, l11, f.x), f.y);
+}
+
+// The levels' sum at light-map position p (xy, depth): Rd's weight on each
+// level's Gaussian (w, per channel) times the level's light. The two
+// narrowest levels are read texel by texel (n: their texels per side); the
+// wider ones forgive a filtered depth and take one filtered read.
+vec3 jd_diffused(sampler2D lv0, sampler2D lv1, sampler2D lv2, sampler2D lv3, sampler2D lv4, vec3 p, vec3 w[5],
+                 vec3 s[2], float n, float slack, float lit)
+{
+    return (21.0 / 20.0) * (w[0] * jd_level_at(lv0, p, n, s[0].x, slack, lit)
+                          + w[1] * jd_level_at(lv1, p, n, s[0].y, slack, lit)
                           + w[2] * jd_level(texture2D(lv2, p.xy), p, s[0].z, slack, lit)
                           + w[3] * jd_level(texture2D(lv3, p.xy), p, s[1].x, slack, lit)
                           + w[4] * jd_level(texture2D(lv4, p.xy), p, s[1].y, slack, lit));

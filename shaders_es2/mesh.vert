@@ -79,7 +79,7 @@ void main()
     if (dot(nv, u_eye - a_position) < 0.0) nv = -nv;
     float ndl = dot(nv, u_light_dir_v);
     float vis = ndl > 0.0 ? jd_lit_fraction(u_depth_v, v_shadow.xyz, u_light_map_v.xy) : 0.0;
-    v_wide = jd_diffused(u_lv0_v, u_lv1_v, u_lv2_v, u_lv3_v, u_lv4_v, v_shadow.xyw, u_lw, u_ls, u_light_map_v.w,
+    v_wide = jd_diffused(u_lv0_v, u_lv1_v, u_lv2_v, u_lv3_v, u_lv4_v, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map_v.w,
                          vis * clamp(4.0 * ndl, 0.0, 1.0));
 #endif
 #if JD_TRANSLUCENT

@@ -42,7 +42,7 @@ uniform sampler2D u_lv2;
 uniform sampler2D u_lv3;
 uniform sampler2D u_lv4;
 uniform vec3 u_lw[5];        // Rd's weight on each level's Gaussian, per channel
-uniform vec3 u_ls[2];        // per level: depth units to sigma_k sqrt(2), levels 1-3 and 4-5
+uniform vec3 u_ls[2];        // per level: depth units to sigma_k sqrt(2), levels 1-3 and 4-5; the first level's size
 #endif
 #endif
 
@@ -93,7 +93,7 @@ void main()
 #if JD_VERTEX_DIFFUSION
     vec3 wide = v_wide;
 #else
-    vec3 wide = jd_diffused(u_lv0, u_lv1, u_lv2, u_lv3, u_lv4, v_shadow.xyw, u_lw, u_ls, u_light_map.w,
+    vec3 wide = jd_diffused(u_lv0, u_lv1, u_lv2, u_lv3, u_lv4, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map.w,
                             vis * clamp(4.0 * ndl, 0.0, 1.0));
 #endif
     vec3 mo = u_albedo * u_shading.x
