@@ -644,10 +644,9 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
     f->light_map[0] = lsz;
     f->light_map[1] = 1.0f / lsz;
     f->light_map[2] = sv.f0;
-    float map_error = s->mode == JD_MODE_FULL ? 0.0f : r->proxy_error;
-    f->light_map[3] = 0.5f * map_error;
+    f->light_map[3] = 0.5f * r->proxy_error;
     f->shadow_bias[0] = 1.5f / lsz;
-    f->shadow_bias[1] = 0.5f * map_error;
+    f->shadow_bias[1] = 0.5f * r->proxy_error;
 
     /* The paper's spread width, sigma = 2 sigma_s, read as millimetres and
      * turned into pixels of the low-resolution buffer at the object's depth. */
@@ -727,9 +726,7 @@ static void use_target(const target *t)
     glScissor(0, 0, t->w, t->h);
 }
 
-/* From the proxy for shadows and thickness; from the mesh itself in full
- * mode, whose levels compare depths at the scale of a millimetre. */
-static void pass_light_depth(jd_renderer *r, const frame_params *f, int full)
+static void pass_light_depth(jd_renderer *r, const frame_params *f)
 {
     use_target(&r->light);
     glClearColor(1, 0, 0, 0); /* packed 1.0: nothing in front; no light */
@@ -741,13 +738,8 @@ static void pass_light_depth(jd_renderer *r, const frame_params *f, int full)
     glUniformMatrix4fv(r->depth_mvp, 1, GL_FALSE, f->light_mvp.m);
     glUniform3f(r->depth_light_dir, f->light_dir.x, f->light_dir.y, f->light_dir.z);
     glUniform1f(r->depth_f0, f->f0);
-    if (full) {
-        bind_mesh(r->mesh_vbo, r->mesh_ibo);
-        glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
-    } else {
-        bind_mesh(r->proxy_vbo, r->proxy_ibo);
-        glDrawElements(GL_TRIANGLES, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0);
-    }
+    bind_mesh(r->proxy_vbo, r->proxy_ibo);
+    glDrawElements(GL_TRIANGLES, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0);
 }
 
 static void pass_capture(jd_renderer *r, const frame_params *f)
@@ -1046,7 +1038,7 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     glEnable(GL_SCISSOR_TEST);
     /* Every mode shadows its direct light with the light-depth map. */
     gpu_begin(r, stats, JD_PASS_LIGHT_DEPTH);
-    pass_light_depth(r, &f, s->mode == JD_MODE_FULL);
+    pass_light_depth(r, &f);
     lap(r, stats, JD_PASS_LIGHT_DEPTH, &t);
     if (s->mode == JD_MODE_FULL) {
         update_fit(r, s, &f);
