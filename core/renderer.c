@@ -118,7 +118,7 @@ const char *jd_pass_name(int pass)
 void jd_scene_defaults(jd_scene *s, const jd_material *m)
 {
     memset(s, 0, sizeof *s);
-    s->mode = JD_MODE_DUAL;
+    s->mode = JD_MODE_FULL;
     s->cam_azimuth = 15;
     s->cam_elevation = 35;
     s->cam_distance = 2.7f;

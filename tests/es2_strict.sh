@@ -1,7 +1,7 @@
 #!/bin/sh
 # jade needs nothing beyond GLES 2.0 core: Mesa forced down to ES 2.0, and
 # then also with every optional extension masked, renders what the normal
-# run renders (all three modes on one sheet).
+# run renders (all four modes on one sheet).
 jade=$1 imgcmp=$2 out=$3
 masked="-GL_OES_element_index_uint -GL_EXT_disjoint_timer_query -GL_OES_texture_npot -GL_OES_depth_texture
 -GL_OES_texture_float -GL_OES_standard_derivatives -GL_OES_rgb8_rgba8 -GL_OES_packed_depth_stencil"
