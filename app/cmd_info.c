@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "gl.h"
 #include "gl_caps.h"
 #include "platform.h"
 #include "profile.h"
@@ -63,6 +64,13 @@ int jd_cmd_info(int argc, char **argv)
     printf("fragment mediump   precision %d bits, range 2^%d\n", c.frag_mediump_precision, c.frag_mediump_range);
     printf("SH packing         %s\n", c.frag_highp_precision >= 23 ? "highp (3 bytes)" : "mediump (2 x 2 bytes)");
     printf("thickness read     %s\n", c.max_vertex_texture_units >= 2 ? "per vertex" : "per fragment (no vertex texture units)");
+    printf("full's diffusion   %s\n", c.max_vertex_texture_units >= 6 ? "per vertex" : "per fragment (under 6 vertex texture units)");
+    GLint samples = 0;
+    glGetIntegerv(GL_SAMPLES, &samples);
+    printf("anti-aliasing      %s\n", prof ? prof->antialias
+                                         : samples > 1 ? "multisampling in the EGL config"
+                                                       : "the pass after the frame (this headless target has no multisampling; "
+                                                         "windows and KMS take a 4x config where there is one)");
     printf("extensions (%d), those jade can use:\n", c.num_extensions);
     printf("  OES_element_index_uint      %s (meshes over 65,536 vertices)\n", c.ext_element_index_uint ? "yes" : "no");
     printf("  EXT_disjoint_timer_query    %s (GPU pass timings in bench)\n", c.ext_disjoint_timer_query ? "yes" : "no");

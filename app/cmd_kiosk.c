@@ -32,7 +32,7 @@ int jd_cmd_kiosk(int argc, char **argv)
     double *times = jd_arena_alloc(&s.arena, sizeof(double) * KIOSK_SAMPLES, 16, "kiosk frame times", &err);
     double *sorted = jd_arena_alloc(&s.arena, sizeof(double) * KIOSK_SAMPLES, 16, "kiosk frame times", &err);
     if (!times || !sorted) { fprintf(stderr, "jade kiosk: %s\n", err.msg); jd_session_close(&s); return 1; }
-    fprintf(stderr, "%s\n", jd_platform_describe(s.platform));
+    fprintf(stderr, "%s\n%s\n", jd_platform_describe(s.platform), jd_antialias_describe(s.renderer));
     jd_scene sc = o.scene;
     double t_start = jd_now_ms(), t_prev = t_start;
     long frames = 0;

@@ -31,7 +31,7 @@ int jd_cmd_view(int argc, char **argv)
     /* Screenshots of any window size, allocated once before the loop. */
     uint8_t *shot = malloc((size_t)mw * mh * 4);
     if (!shot) { fprintf(stderr, "jade view: cannot reserve the screenshot buffer\n"); jd_session_close(&s); return 1; }
-    printf("%s\n%s\n", jd_platform_describe(s.platform), keys_help);
+    printf("%s\n%s\n%s\n", jd_platform_describe(s.platform), jd_antialias_describe(s.renderer), keys_help);
     jd_scene sc = o.scene;
     int material = 0, orbit = 0, shots = 0, w = o.width, h = o.height;
     for (int i = 0; i < jd_material_count; i++)

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef enum { T_STR, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION } opt_type;
+typedef enum { T_STR, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION, T_ANTIALIAS } opt_type;
 
 typedef struct opt {
     const char *name;
@@ -73,6 +73,8 @@ static const opt table[] = {
     {"--diffusion-size", T_INT, OFF(rdesc.diffusion_size), 16, 2048, R | B, "N          full mode: first light-space diffusion level, texels per side [light map / 4]"},
     {"--profile", T_STR, OFF(profile), 0, 0, R | B | JD_OPT_INFO, "NAME       emulate a device's limits: generic, vc4, mali400"},
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
+    {"--antialias", T_ANTIALIAS, OFF(rdesc.antialias), 0, 0, R | B,
+     "A          auto|off|post: edges by the target's multisampling, else a pass after the frame [auto]"},
     {"--fragment-thickness", T_FLAG, OFF(rdesc.fragment_thickness), 0, 0, R | B, "           thickness per fragment, not per vertex (coarse meshes)"},
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
     {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, S, "N          memory budget of the core [8]"},
@@ -203,6 +205,15 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
             else if (!strcmp(v, "mediump")) o->rdesc.precision = JD_PRECISION_MEDIUMP;
             else {
                 fprintf(stderr, "jade %s: %s: expected auto, highp or mediump, got '%s'\n", cmd, a, v);
+                return 0;
+            }
+            break;
+        case T_ANTIALIAS:
+            if (!strcmp(v, "auto")) o->rdesc.antialias = JD_AA_AUTO;
+            else if (!strcmp(v, "off")) o->rdesc.antialias = JD_AA_OFF;
+            else if (!strcmp(v, "post")) o->rdesc.antialias = JD_AA_POST;
+            else {
+                fprintf(stderr, "jade %s: %s: expected auto, off or post, got '%s'\n", cmd, a, v);
                 return 0;
             }
             break;

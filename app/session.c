@@ -84,6 +84,7 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
     if (!mesh_path(s, o, cmd)) return 0;
     jd_platform_desc pd = {.kind = o->platform ? o->platform : "headless", .width = o->width, .height = o->height,
                            .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode,
+                           .single_sample = o->rdesc.antialias == JD_AA_OFF,
                            .atomic = o->atomic};
     /* No display, no point decoding: say so at once. */
     if (jd_platform_probe(&pd, &err)) {
@@ -124,4 +125,17 @@ void jd_session_close(jd_session *s)
     if (s->platform) jd_platform_close(s->platform);
     free(s->memory);
     memset(s, 0, sizeof *s);
+}
+
+const char *jd_antialias_describe(const jd_renderer *r)
+{
+    static char line[96];
+    int samples = jd_renderer_target_samples(r);
+    if (jd_renderer_post_antialias(r))
+        snprintf(line, sizeof line, "anti-aliasing: a pass after the frame (the target has no multisampling)");
+    else if (samples > 1)
+        snprintf(line, sizeof line, "anti-aliasing: %dx multisampling (the EGL config)", samples);
+    else
+        snprintf(line, sizeof line, "anti-aliasing: off");
+    return line;
 }

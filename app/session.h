@@ -26,6 +26,8 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd);
 /* Only the mesh, for commands without a display (the reference). */
 int jd_session_open_mesh(jd_session *s, jd_options *o, const char *cmd);
 void jd_session_close(jd_session *s);
+/* One line: how the edges are anti-aliased. */
+const char *jd_antialias_describe(const jd_renderer *r);
 /* The default asset beside the program (build tree) or installed. */
 int jd_default_asset(char *out, size_t cap);
 

@@ -5,13 +5,16 @@
 
 const jd_profile jd_profiles[] = {
     {"generic", "any GLES 2.0 device: the specification's minimums, no extensions", 2048, 2048, 2048, 2048, 128, 16, 8,
-     8, 0, 0, 0, "OpenGL ES 2.0.25, tables 6.18-6.20 (sizes raised to 2048, the smallest jade renders with)"},
+     8, 0, 0, 0, "OpenGL ES 2.0.25, tables 6.18-6.20 (sizes raised to 2048, the smallest jade renders with)",
+     "the pass after the frame (ES 2.0 guarantees no multisampled config)"},
     {"vc4", "Raspberry Pi 0-3 (VideoCore IV, Mesa vc4)", 2048, 2048, 2048, 2048, 256, 256, 8, 8, 8, 1, 0,
      "Mesa vc4_screen.c: 2D textures 2048, 8 varyings, samplers in both stages, fp32 (highp) shaders, "
-     "8- and 16-bit index buffers only"},
+     "8- and 16-bit index buffers only",
+     "4x multisampling in the EGL config (resolved in VideoCore IV's tile buffer)"},
     {"mali400", "Mali-400/450 (Utgard: ARM driver, Mesa lima)", 4096, 4096, 4096, 1024, 256, 256, 12, 8, 0, 0, 0,
      "ARM gles_config_m200.h / gles2_config_m200.h: 256 uniform vectors per stage, no vertex texture units, "
-     "renderbuffers and viewports 4096, cube maps 1024; fragment shaders fp16 only"},
+     "renderbuffers and viewports 4096, cube maps 1024; fragment shaders fp16 only",
+     "4x multisampling in the EGL config (free on Mali-400's tile buffer)"},
 };
 const int jd_profile_count = (int)(sizeof jd_profiles / sizeof jd_profiles[0]);
 

@@ -14,6 +14,7 @@ typedef struct jd_profile {
     int frag_highp;             /* 0: mediump (fp16) only */
     int ext_element_index_uint; /* 32-bit indices */
     const char *source;         /* where the numbers come from */
+    const char *antialias;      /* how the board's edges get anti-aliased */
 } jd_profile;
 
 extern const jd_profile jd_profiles[];

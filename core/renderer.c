@@ -71,6 +71,8 @@ struct jd_renderer {
     int highp;
     int vertex_thickness; /* thickness read in the vertex stage */
     int vertex_diffusion; /* the full mode's levels summed in the vertex stage */
+    int target_samples;   /* GL_SAMPLES of the platform's target */
+    int post_aa;          /* frames go to `scene`, then through the anti-aliasing pass */
     jd_mesh proxy, capture_proxy;
     GLuint mesh_vbo, mesh_ibo, proxy_vbo, proxy_ibo, cap_vbo, cap_ibo, quad_vbo;
     GLuint tail_tex;
@@ -85,6 +87,8 @@ struct jd_renderer {
     shade_prog shade[JD_MODE_COUNT], a0;
     GLuint depth_prog, capture_prog, project_prog, reduce_faces_prog, reduce_final_prog, blur_prog, combine_prog;
     diff_prog diff_first, diff_next; /* level 1 from the light map; the others */
+    GLuint aa_prog;
+    GLint aa_src, aa_texel, aa_scale;
     GLint depth_mvp, depth_light_dir, depth_f0;
     GLint cap_mvp, cap_light_mvp, cap_light_dir, cap_bias, cap_depth, cap_light_color;
     GLint proj_atlas, proj_texel, rf_src, rf_texel, rl_src, rl_texel;
@@ -92,6 +96,7 @@ struct jd_renderer {
     GLint comb_src, comb_step, comb_inv, comb_a1, comb_w1, comb_w2, comb_scale;
     target light, atlas, sh1, sh2, sh3, spread0, spread_tmp, spread1, spread2;
     target diff_tmp, diff_lv[DIFF_TEXTURES];
+    target scene;         /* the frame before anti-aliasing (post_aa only) */
     size_t target_bytes;
     float box_half;
 };
@@ -412,6 +417,14 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     r->comb_scale = glGetUniformLocation(r->combine_prog, "u_uv_scale");
     if ((res = build_diffusion(r, 1, &r->diff_first, err)) || (res = build_diffusion(r, 0, &r->diff_next, err)))
         return res;
+    if (r->post_aa) {
+        if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/antialias.frag", "#define JD_PACK_HIGHP 0\n",
+                         quad_attribs, &r->aa_prog, err)))
+            return res;
+        r->aa_src = glGetUniformLocation(r->aa_prog, "u_src");
+        r->aa_texel = glGetUniformLocation(r->aa_prog, "u_texel");
+        r->aa_scale = glGetUniformLocation(r->aa_prog, "u_uv_scale");
+    }
     return JD_OK;
 }
 
@@ -455,6 +468,14 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     r->vertex_thickness = !d->fragment_thickness && d->caps->max_vertex_texture_units >= 2;
     /* The light map and the level textures. */
     r->vertex_diffusion = !d->fragment_thickness && d->caps->max_vertex_texture_units >= 1 + DIFF_TEXTURES;
+
+    if (d->antialias < JD_AA_AUTO || d->antialias > JD_AA_POST)
+        return jd_fail(err, JD_ERR_ARG, "anti-aliasing %d must be auto, off or post", (int)d->antialias);
+    GLint samples = 0;
+    glBindFramebuffer(GL_FRAMEBUFFER, d->target_fbo);
+    glGetIntegerv(GL_SAMPLES, &samples);
+    r->target_samples = samples;
+    r->post_aa = d->antialias == JD_AA_POST || (d->antialias == JD_AA_AUTO && samples <= 1);
 
     if (d->mesh->index_size == 4 && !d->caps->ext_element_index_uint)
         return jd_fail(err, JD_ERR_UNSUPPORTED, "mesh needs 32-bit indices but OES_element_index_uint is missing");
@@ -514,6 +535,8 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
         (res = make_target(r, &r->spread2, sw, shh, 0, 1, "spread A2", err)) ||
         (res = make_target(r, &r->diff_tmp, d->diffusion_size, d->light_map_size, 0, 0, "diffusion blur", err)))
         goto fail;
+    if (r->post_aa && (res = make_target(r, &r->scene, d->max_width, d->max_height, 1, 1, "frame before anti-aliasing", err)))
+        goto fail;
     for (int i = 0; i < DIFF_TEXTURES; i++)
         if ((res = make_target(r, &r->diff_lv[i], d->diffusion_size >> (i / 2), d->diffusion_size >> (i / 2), 0, 1,
                                "diffusion level", err)))
@@ -530,7 +553,7 @@ void jd_renderer_destroy(jd_renderer *r)
 {
     if (!r) return;
     target *ts[] = {&r->light,   &r->atlas,   &r->sh1,     &r->sh2, &r->sh3, &r->spread0, &r->spread_tmp,
-                    &r->spread1, &r->spread2, &r->diff_tmp};
+                    &r->spread1, &r->spread2, &r->diff_tmp, &r->scene};
     for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++) free_target(ts[i]);
     for (int i = 0; i < DIFF_TEXTURES; i++) free_target(&r->diff_lv[i]);
     GLuint bufs[] = {r->mesh_vbo, r->mesh_ibo, r->proxy_vbo, r->proxy_ibo, r->cap_vbo, r->cap_ibo, r->quad_vbo};
@@ -539,7 +562,7 @@ void jd_renderer_destroy(jd_renderer *r)
     if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
     GLuint progs[] = {r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_faces_prog,
-                      r->reduce_final_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id};
+                      r->reduce_final_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id, r->aa_prog};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
     memset(r, 0, sizeof *r);
 }
@@ -555,6 +578,8 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
                        r->d.max_height);
     r->d.width = width;
     r->d.height = height;
+    r->scene.w = width;
+    r->scene.h = height;
     int div = r->d.spread_divisor;
     target *spread[] = {&r->spread0, &r->spread_tmp, &r->spread1, &r->spread2};
     for (int i = 0; i < 4; i++) {
@@ -566,6 +591,8 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
 int jd_renderer_highp(const jd_renderer *r) { return r->highp; }
 int jd_renderer_vertex_thickness(const jd_renderer *r) { return r->vertex_thickness; }
 int jd_renderer_has_gpu_timer(const jd_renderer *r) { return r->tq.ok; }
+int jd_renderer_target_samples(const jd_renderer *r) { return r->target_samples; }
+int jd_renderer_post_antialias(const jd_renderer *r) { return r->post_aa; }
 const jd_mesh *jd_renderer_proxy(const jd_renderer *r) { return &r->proxy; }
 
 /* ---- per frame ---------------------------------------------------------- */
@@ -976,7 +1003,7 @@ static void pass_diffusion(jd_renderer *r, const frame_params *f)
 
 static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, r->post_aa ? r->scene.fbo : r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
     glScissor(0, 0, r->d.width, r->d.height);
     float bg[3];
@@ -988,6 +1015,24 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
     set_shade_uniforms(r, &r->shade[s->mode], f, r->d.width, r->d.height);
     bind_mesh(r->mesh_vbo, r->mesh_ibo);
     glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
+}
+
+/* The frame from `scene` into the platform's target, its edges smoothed. */
+static void pass_antialias(jd_renderer *r)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
+    glViewport(0, 0, r->d.width, r->d.height);
+    glScissor(0, 0, r->d.width, r->d.height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    bind_quad(r);
+    glUseProgram(r->aa_prog);
+    glUniform1i(r->aa_src, 0);
+    glUniform2f(r->aa_texel, 1.0f / (float)r->scene.tw, 1.0f / (float)r->scene.th);
+    glUniform2f(r->aa_scale, (float)r->scene.w / (float)r->scene.tw, (float)r->scene.h / (float)r->scene.th);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, r->scene.tex);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
 static void gpu_begin(jd_renderer *r, jd_frame_stats *st, int pass)
@@ -1066,6 +1111,7 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     }
     gpu_begin(r, stats, JD_PASS_MAIN);
     pass_main(r, s, &f);
+    if (r->post_aa) pass_antialias(r);
     lap(r, stats, JD_PASS_MAIN, &t);
     gpu_collect(r, stats);
     if (stats) {

@@ -14,6 +14,10 @@
  * jade reference). */
 typedef enum jd_mode { JD_MODE_NONE = 0, JD_MODE_SINGLE, JD_MODE_DUAL, JD_MODE_FULL, JD_MODE_COUNT } jd_mode;
 typedef enum jd_precision { JD_PRECISION_AUTO = 0, JD_PRECISION_HIGHP, JD_PRECISION_MEDIUMP } jd_precision;
+/* Edges: AUTO leaves them to a multisampled target (GL_SAMPLES > 1: an EGL
+ * config with samples, free on tile-based GPUs) and otherwise smooths them
+ * in a pass after the frame (one full-size render target more). */
+typedef enum jd_antialias { JD_AA_AUTO = 0, JD_AA_OFF, JD_AA_POST } jd_antialias;
 
 const char *jd_mode_name(jd_mode m);
 int jd_mode_parse(const char *s, jd_mode *out);
@@ -33,6 +37,7 @@ typedef struct jd_renderer_desc {
     int spread_divisor;   /* [8] spread layers at 1/N resolution */
     int diffusion_size;   /* [light_map_size / 2] texels per side of the full mode's light-space levels */
     jd_precision precision; /* [from the device's fragment highp support] */
+    jd_antialias antialias; /* [AUTO] */
     int no_cull;          /* draw back faces too (open meshes) */
     int fragment_thickness; /* read thickness per fragment even where the
                                vertex stage could (coarse meshes) */
@@ -104,6 +109,9 @@ size_t jd_renderer_target_bytes(const jd_renderer *r);
 int jd_renderer_highp(const jd_renderer *r);
 int jd_renderer_vertex_thickness(const jd_renderer *r);
 int jd_renderer_has_gpu_timer(const jd_renderer *r);
+/* The target's samples per pixel, and whether the post-process pass runs. */
+int jd_renderer_target_samples(const jd_renderer *r);
+int jd_renderer_post_antialias(const jd_renderer *r);
 const jd_mesh *jd_renderer_proxy(const jd_renderer *r);
 /* Reads back the last frame's capture atlas (3N x 2N RGBA8, rows bottom-up)
  * and the 27 packed SH pixels, for tests against the CPU reference. */

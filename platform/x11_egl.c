@@ -78,11 +78,18 @@ static jd_result x11_open(const jd_platform_desc *desc, void **out, jd_error *er
         x11_close(p);
         return jd_fail(err, JD_ERR_PLATFORM, "EGL cannot use the X display '%s'", name);
     }
+    /* 4x multisampling where a config has it (the renderer then needs no
+     * anti-aliasing pass of its own), else none. */
+    const EGLint cfg_msaa[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES2_BIT, EGL_SURFACE_TYPE, EGL_WINDOW_BIT,
+                               EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 16,
+                               EGL_SAMPLE_BUFFERS, 1, EGL_SAMPLES, 4, EGL_NONE};
     const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES2_BIT, EGL_SURFACE_TYPE, EGL_WINDOW_BIT,
                                EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 16, EGL_NONE};
     EGLConfig cfg;
     EGLint n = 0;
-    if (!eglBindAPI(EGL_OPENGL_ES_API) || !eglChooseConfig(p->edpy, cfg_attr, &cfg, 1, &n) || n < 1) {
+    if (!eglBindAPI(EGL_OPENGL_ES_API) ||
+        ((desc->single_sample || !eglChooseConfig(p->edpy, cfg_msaa, &cfg, 1, &n) || n < 1) &&
+         (!eglChooseConfig(p->edpy, cfg_attr, &cfg, 1, &n) || n < 1))) {
         x11_close(p);
         return jd_fail(err, JD_ERR_PLATFORM, "no EGL config with RGB8, 16-bit depth and GLES 2.0 on '%s'", name);
     }

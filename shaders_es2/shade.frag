@@ -103,12 +103,16 @@ void main()
     vec3 col = u_albedo * (u_shading.x + ndl * vis * u_light_color) + u_shading.y * spec * u_light_color;
 #endif
 #if JD_TRANSLUCENT
-    vec3 a0 = translucency();
+    // At the silhouette the per-vertex A0 of a grazing vertex (its
+    // refraction box-projected to wherever the capture is brightest) would
+    // light single pixels that flicker as the light moves; the Fresnel
+    // transmittance there is near zero anyway, per fragment.
+    vec3 a0 = translucency() * smoothstep(0.0, 0.25, dot(n, v));
 #if JD_SPREAD
     vec4 sp = texture2D(u_spread, gl_FragCoord.xy * u_inv_viewport);
     // Where the low-resolution layers did not reach (a silhouette pixel the
     // proxy missed), A0 stands in for them.
-    vec3 spread = sp.a > 0.5 ? 2.0 * sp.rgb * sp.rgb : (1.0 - u_w0) * a0;
+    vec3 spread = (sp.a > 0.5 ? 2.0 * sp.rgb * sp.rgb : (1.0 - u_w0) * a0) * smoothstep(0.0, 0.25, dot(n, v));
     col += u_w0 * a0 + spread;
 #else
     col += a0;

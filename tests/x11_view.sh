@@ -15,8 +15,14 @@ i=0
 while [ ! -e "/tmp/.X11-unix/X$d" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
 pass=0 fail=0
 check() { if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); fi; }
-args="--size 200x160 --cam-azimuth 30 --material skin1"
+# The same picture both ways: edges without anti-aliasing (the window may
+# have multisampling, the headless target has not).
+args="--size 200x160 --cam-azimuth 30 --material skin1 --antialias off"
 check env DISPLAY=":$d" "$jade" view --frames 60 --screenshot "$out/view.png" $args
+# By default the window's edges are anti-aliased, one way or the other.
+env DISPLAY=":$d" "$jade" view --frames 2 --size 200x160 > "$out/view_aa.txt" 2>&1
+check grep -Eq "anti-aliasing: ([0-9]+x multisampling|a pass after the frame)" "$out/view_aa.txt"
+grep anti-aliasing "$out/view_aa.txt"
 check "$jade" render --out "$out/view_headless.png" $args
 check "$imgcmp" "$out/view.png" "$out/view_headless.png" --max-rmse 1.0 --max-bad-frac 0.001 --bad-threshold 16
 check env DISPLAY=":$d" "$jade" view --frames 5 --screenshot "$out/view_mali.png" --profile mali400 $args

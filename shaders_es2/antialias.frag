@@ -1,0 +1,36 @@
+#version 100
+// Anti-aliasing after the fact, where the target has no multisampling: the
+// luma of the four diagonal neighbours says whether this pixel sits on an
+// edge and which way it runs; the colour is then averaged along the edge
+// (two or four taps), and the wider average is kept only if its luma stays
+// within the neighbourhood's range (else it crossed another edge).
+uniform sampler2D u_src;    // the frame, display-encoded, bilinear
+uniform vec2 u_texel;       // 1 / the source texture's size
+varying vec2 v_uv;
+
+float luma(vec3 c) { return dot(c, vec3(0.299, 0.587, 0.114)); }
+
+void main()
+{
+    vec3 m = texture2D(u_src, v_uv).rgb;
+    float nw = luma(texture2D(u_src, v_uv + vec2(-1.0, -1.0) * u_texel).rgb);
+    float ne = luma(texture2D(u_src, v_uv + vec2(1.0, -1.0) * u_texel).rgb);
+    float sw = luma(texture2D(u_src, v_uv + vec2(-1.0, 1.0) * u_texel).rgb);
+    float se = luma(texture2D(u_src, v_uv + vec2(1.0, 1.0) * u_texel).rgb);
+    float lm = luma(m);
+    float lo = min(lm, min(min(nw, ne), min(sw, se)));
+    float hi = max(lm, max(max(nw, ne), max(sw, se)));
+    // Flat regions (most of the picture) stay exactly as they are.
+    if (hi - lo < 0.05) {
+        gl_FragColor = vec4(m, 1.0);
+        return;
+    }
+    vec2 dir = vec2(-((nw + ne) - (sw + se)), (nw + sw) - (ne + se));
+    float reduce = max((nw + ne + sw + se) * 0.03125, 1.0 / 128.0);
+    float scale = 1.0 / (min(abs(dir.x), abs(dir.y)) + reduce);
+    dir = clamp(dir * scale, vec2(-4.0), vec2(4.0)) * u_texel;
+    vec3 a = 0.5 * (texture2D(u_src, v_uv - dir * (1.0 / 6.0)).rgb + texture2D(u_src, v_uv + dir * (1.0 / 6.0)).rgb);
+    vec3 b = 0.5 * a + 0.25 * (texture2D(u_src, v_uv - dir * 0.5).rgb + texture2D(u_src, v_uv + dir * 0.5).rgb);
+    float lb = luma(b);
+    gl_FragColor = vec4(lb < lo || lb > hi ? a : b, 1.0);
+}
