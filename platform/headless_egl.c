@@ -9,6 +9,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GLES2/gl2.h>
+#include <GLES2/gl2ext.h>
 
 #ifndef EGL_PLATFORM_SURFACELESS_MESA
 #define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
@@ -134,12 +135,31 @@ static jd_result headless_open(const jd_platform_desc *desc, void **out, jd_erro
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, tw, th, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
     glGenRenderbuffers(1, &p->depth);
     glBindRenderbuffer(GL_RENDERBUFFER, p->depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, tw, th);
     glGenFramebuffers(1, &p->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, p->fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, p->color, 0);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, p->depth);
-    GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    GLenum st = 0;
+    /* EXT_multisampled_render_to_texture: 4x samples that live in a tiler's
+     * tile buffer only and are resolved as tiles are written out, so the
+     * target stays an ordinary texture. Untried where jade was developed
+     * (llvmpipe lacks it); an incomplete framebuffer falls back to none. */
+    const char *gl_exts = (const char *)glGetString(GL_EXTENSIONS);
+    PFNGLRENDERBUFFERSTORAGEMULTISAMPLEEXTPROC storage_ms =
+        (PFNGLRENDERBUFFERSTORAGEMULTISAMPLEEXTPROC)eglGetProcAddress("glRenderbufferStorageMultisampleEXT");
+    PFNGLFRAMEBUFFERTEXTURE2DMULTISAMPLEEXTPROC texture_ms =
+        (PFNGLFRAMEBUFFERTEXTURE2DMULTISAMPLEEXTPROC)eglGetProcAddress("glFramebufferTexture2DMultisampleEXT");
+    if (!desc->single_sample && has_ext(gl_exts, "GL_EXT_multisampled_render_to_texture") && storage_ms && texture_ms) {
+        storage_ms(GL_RENDERBUFFER, 4, GL_DEPTH_COMPONENT16, tw, th);
+        texture_ms(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, p->color, 0, 4);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, p->depth);
+        st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        while (glGetError() != GL_NO_ERROR) {}
+    }
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, tw, th);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, p->color, 0);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, p->depth);
+        st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    }
     if (st != GL_FRAMEBUFFER_COMPLETE) {
         headless_close(p);
         return jd_fail(err, JD_ERR_PLATFORM, "offscreen framebuffer %dx%d incomplete (0x%x)", tw, th, st);

@@ -12,7 +12,8 @@ typedef struct jd_platform jd_platform;
 typedef struct jd_platform_desc {
     const char *kind;         /* "headless" [default], "x11" or "drm" */
     int width, height;        /* [512 x 512]; drm: taken from the display mode */
-    int single_sample;        /* x11, drm: no multisampled EGL config (else 4x where one exists) */
+    int single_sample;        /* no multisampling (else 4x where the EGL config or, headless,
+                                 EXT_multisampled_render_to_texture has it) */
     /* drm only */
     const char *drm_device;   /* [the first KMS-capable /dev/dri/card*] */
     const char *connector;    /* e.g. "HDMI-A-1" [the first connected] */
