@@ -83,22 +83,24 @@ void jd_mesh_fix_normals(jd_mesh *m)
     normalize_all(m);
 }
 
-static void corner(const jd_mesh *m, uint32_t t, int k, double p[3])
+/* Triangle t's corners (t counts indices), relative to the box centre. */
+static void triangle(const jd_mesh *m, uint32_t t, double p[3][3])
 {
-    const float *v = m->positions + 3 * (size_t)jd_mesh_index(m, t + (uint32_t)k);
-    p[0] = v[0] - 0.5 * ((double)m->bmin.x + m->bmax.x);
-    p[1] = v[1] - 0.5 * ((double)m->bmin.y + m->bmax.y);
-    p[2] = v[2] - 0.5 * ((double)m->bmin.z + m->bmax.z);
+    for (int k = 0; k < 3; k++) {
+        const float *v = m->positions + 3 * (size_t)jd_mesh_index(m, t + (uint32_t)k);
+        p[k][0] = v[0] - 0.5 * ((double)m->bmin.x + m->bmax.x);
+        p[k][1] = v[1] - 0.5 * ((double)m->bmin.y + m->bmax.y);
+        p[k][2] = v[2] - 0.5 * ((double)m->bmin.z + m->bmax.z);
+    }
 }
 
 int jd_mesh_orient_outward(jd_mesh *m)
 {
     /* Six times the signed volume: the sum of a . (b x c) over the faces. */
-    double vol6 = 0, a[3], b[3], c[3];
+    double vol6 = 0, p[3][3];
     for (uint32_t t = 0; t + 2 < m->num_indices; t += 3) {
-        corner(m, t, 0, a);
-        corner(m, t, 1, b);
-        corner(m, t, 2, c);
+        triangle(m, t, p);
+        const double *a = p[0], *b = p[1], *c = p[2];
         vol6 += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
     }
     double box = ((double)m->bmax.x - m->bmin.x) * ((double)m->bmax.y - m->bmin.y) * ((double)m->bmax.z - m->bmin.z);
@@ -119,11 +121,10 @@ int jd_mesh_orient_outward(jd_mesh *m)
 
 int jd_mesh_normals_follow_winding(jd_mesh *m)
 {
-    double agree = 0, a[3], b[3], c[3];
+    double agree = 0, p[3][3];
     for (uint32_t t = 0; t + 2 < m->num_indices; t += 3) {
-        corner(m, t, 0, a);
-        corner(m, t, 1, b);
-        corner(m, t, 2, c);
+        triangle(m, t, p);
+        const double *a = p[0], *b = p[1], *c = p[2];
         double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
         double fn[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
         for (int k = 0; k < 3; k++) {
