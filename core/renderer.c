@@ -1017,12 +1017,37 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
     glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
 }
 
-/* The frame from `scene` into the platform's target, its edges smoothed. */
-static void pass_antialias(jd_renderer *r)
+/* The frame from `scene` into the platform's target, its edges smoothed.
+ * Only the object's box on screen (its corners projected, two pixels
+ * more) is filtered; the rest is background, cleared. */
+static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
     glScissor(0, 0, r->d.width, r->d.height);
+    float bg[3];
+    for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f));
+    glClearColor(bg[0], bg[1], bg[2], 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    float x0 = 1, y0 = 1, x1 = -1, y1 = -1, h = r->box_half;
+    int inside = 1;
+    for (int i = 0; i < 8; i++) {
+        jd_vec3 p = jd_v3(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
+        const float *m = f->mvp.m;
+        float cx = m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12], cy = m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13];
+        float cw = m[3] * p.x + m[7] * p.y + m[11] * p.z + m[15];
+        if (cw <= 1e-4f) { inside = 0; break; } /* behind the camera: filter everything */
+        x0 = fminf(x0, cx / cw); x1 = fmaxf(x1, cx / cw);
+        y0 = fminf(y0, cy / cw); y1 = fmaxf(y1, cy / cw);
+    }
+    if (inside) {
+        int px0 = (int)floorf((x0 * 0.5f + 0.5f) * r->d.width) - 2, px1 = (int)ceilf((x1 * 0.5f + 0.5f) * r->d.width) + 2;
+        int py0 = (int)floorf((y0 * 0.5f + 0.5f) * r->d.height) - 2, py1 = (int)ceilf((y1 * 0.5f + 0.5f) * r->d.height) + 2;
+        px0 = px0 < 0 ? 0 : px0; py0 = py0 < 0 ? 0 : py0;
+        px1 = px1 > r->d.width ? r->d.width : px1; py1 = py1 > r->d.height ? r->d.height : py1;
+        if (px1 <= px0 || py1 <= py0) return;
+        glScissor(px0, py0, px1 - px0, py1 - py0);
+    }
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     bind_quad(r);
@@ -1111,7 +1136,7 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     }
     gpu_begin(r, stats, JD_PASS_MAIN);
     pass_main(r, s, &f);
-    if (r->post_aa) pass_antialias(r);
+    if (r->post_aa) pass_antialias(r, s, &f);
     lap(r, stats, JD_PASS_MAIN, &t);
     gpu_collect(r, stats);
     if (stats) {
