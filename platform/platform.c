@@ -12,6 +12,7 @@
 struct jd_platform {
     const jd_platform_ops *ops;
     void *impl;
+    int quit_reported; /* a signal's QUIT is one event, not one on every poll */
 };
 
 static struct jd_platform g_platform; /* one display per process */
@@ -62,7 +63,10 @@ unsigned jd_platform_framebuffer(const jd_platform *p) { return p->ops->framebuf
 jd_result jd_platform_present(jd_platform *p, jd_error *err) { return p->ops->present(p->impl, err); }
 int jd_platform_poll(jd_platform *p, jd_event *ev)
 {
-    if (jd_quit_requested()) {
+    /* Reported once: callers drain events with while (poll), and a QUIT
+     * returned on every call kept a signalled kiosk spinning for ever. */
+    if (jd_quit_requested() && !p->quit_reported) {
+        p->quit_reported = 1;
         ev->type = JD_EVENT_QUIT;
         return 1;
     }

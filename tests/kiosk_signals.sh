@@ -1,0 +1,47 @@
+#!/bin/sh
+# The running kiosk, sent real signals: SIGTERM (systemctl stop) and SIGINT
+# (Ctrl-C) end it within a frame or two, with its statistics line and exit
+# status 0, on the headless platform and on X11 (Xvfb, started here when it
+# is installed). A kiosk that keeps running is killed after 10 s and fails.
+jade=$1 out=$2
+pass=0 fail=0
+run() { # run PLATFORM SIGNAL [env...]
+    plat=$1 sig=$2
+    shift 2
+    env "$@" "$jade" kiosk --platform "$plat" --size 160x120 > "$out/kiosk_$plat.$sig.txt" 2>&1 &
+    pid=$!
+    # Until it has drawn frames: start-up (decode, shaders) is not the point.
+    i=0
+    while [ $i -lt 100 ] && ! grep -q "anti-aliasing" "$out/kiosk_$plat.$sig.txt"; do sleep 0.1; i=$((i + 1)); done
+    sleep 0.5
+    kill -"$sig" "$pid"
+    sent=$(date +%s%N)
+    ( sleep 10; kill -KILL "$pid" 2>/dev/null ) &
+    guard=$!
+    wait "$pid"
+    rc=$?
+    ms=$(( ($(date +%s%N) - sent) / 1000000 ))
+    kill "$guard" 2>/dev/null
+    if [ "$rc" -eq 0 ] && [ "$ms" -lt 5000 ] && grep -q "^kiosk: [0-9]* frames in" "$out/kiosk_$plat.$sig.txt"; then
+        pass=$((pass + 1)); echo "ok   $plat SIG$sig: exit 0 after $ms ms: $(grep '^kiosk:' "$out/kiosk_$plat.$sig.txt")"
+    else
+        fail=$((fail + 1)); echo "FAIL $plat SIG$sig: exit $rc after $ms ms"; cat "$out/kiosk_$plat.$sig.txt"
+    fi
+}
+run headless TERM
+run headless INT
+if command -v Xvfb >/dev/null; then
+    d=95
+    while [ -e "/tmp/.X$d-lock" ] || [ -e "/tmp/.X11-unix/X$d" ]; do d=$((d + 1)); done
+    Xvfb ":$d" -screen 0 640x480x24 -nolisten tcp >/dev/null 2>&1 &
+    xpid=$!
+    trap 'kill $xpid 2>/dev/null' EXIT
+    i=0
+    while [ ! -e "/tmp/.X11-unix/X$d" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+    run x11 TERM DISPLAY=":$d"
+    run x11 INT DISPLAY=":$d"
+else
+    echo "Xvfb missing: the X11 kiosk is not tried"
+fi
+echo "kiosk signals: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
