@@ -16,8 +16,5 @@ void main()
     // reference's irradiance per unit area of surface. At most 21/20: stored
     // over that, as a square root, so dim light keeps its precision in 8 bits.
     float ndl = max(dot(normalize(a_normal), u_light_dir), 0.0);
-    float x = 1.0 - ndl;
-    float x2 = x * x;
-    float ft = (1.0 - (u_f0 + (1.0 - u_f0) * x2 * x2 * x)) / ((1.0 - u_f0) * (20.0 / 21.0));
-    v_irr = sqrt(clamp(ndl * ft * (20.0 / 21.0), 0.0, 1.0));
+    v_irr = sqrt(clamp(ndl * jd_fresnel_tc(ndl, u_f0) * (20.0 / 21.0), 0.0, 1.0));
 }

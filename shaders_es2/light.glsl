@@ -1,6 +1,15 @@
 // What the shading passes ask of the light-depth map and of the full mode's
 // light-space levels, the same in the vertex and the fragment stage.
 
+// Schlick's transmittance Ft over its hemispherical mean c = (1 - F0) 20/21:
+// the reference's Fresnel factor for light entering or leaving.
+float jd_fresnel_tc(float cosv, float f0)
+{
+    float x = 1.0 - clamp(cosv, 0.0, 1.0);
+    float x2 = x * x;
+    return (1.0 - (f0 + (1.0 - f0) * x2 * x2 * x)) / ((1.0 - f0) * (20.0 / 21.0));
+}
+
 // Percentage-closer filtering: the four nearest texels of the light depth
 // compared with the point l (light-map xy, depth), the answers (not the
 // depths) mixed bilinearly. size: texels per side and their inverse.

@@ -46,17 +46,6 @@ uniform vec3 u_ls[2];        // per level: depth units to sigma_k sqrt(2), level
 #endif
 #endif
 
-#if JD_FULL
-// Schlick transmittance over its hemispherical mean c = (1 - F0) 20/21.
-float fresnel_tc(float cosv)
-{
-    float x = 1.0 - clamp(cosv, 0.0, 1.0);
-    float x2 = x * x;
-    float f0 = u_light_map.z;
-    return (1.0 - (f0 + (1.0 - f0) * x2 * x2 * x)) / ((1.0 - f0) * (20.0 / 21.0));
-}
-
-#endif
 
 #if JD_TRANSLUCENT
 // A0: the per-vertex part times the dipole tail of the thickness, which comes
@@ -97,8 +86,8 @@ void main()
                             vis * clamp(4.0 * ndl, 0.0, 1.0));
 #endif
     vec3 mo = u_albedo * u_shading.x
-            + u_light_color * (u_wl * (ndl * fresnel_tc(ndl) * vis) + wide);
-    vec3 col = fresnel_tc(dot(n, v)) * mo + u_shading.y * spec * u_light_color;
+            + u_light_color * (u_wl * (ndl * jd_fresnel_tc(ndl, u_light_map.z) * vis) + wide);
+    vec3 col = jd_fresnel_tc(dot(n, v), u_light_map.z) * mo + u_shading.y * spec * u_light_color;
 #else
     vec3 col = u_albedo * (u_shading.x + ndl * vis * u_light_color) + u_shading.y * spec * u_light_color;
 #endif
