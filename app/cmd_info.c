@@ -64,7 +64,7 @@ int jd_cmd_info(int argc, char **argv)
     printf("fragment mediump   precision %d bits, range 2^%d\n", c.frag_mediump_precision, c.frag_mediump_range);
     printf("SH packing         %s\n", c.frag_highp_precision >= 23 ? "highp (3 bytes)" : "mediump (2 x 2 bytes)");
     printf("thickness read     %s\n", c.max_vertex_texture_units >= 2 ? "per vertex" : "per fragment (no vertex texture units)");
-    printf("full's diffusion   %s\n", c.max_vertex_texture_units >= 6 ? "per vertex" : "per fragment (under 6 vertex texture units)");
+    printf("full's diffusion   %s\n", c.max_vertex_texture_units >= 6 ? "per vertex" : "per fragment, at half resolution (under 6 vertex texture units)");
     GLint samples = 0;
     glGetIntegerv(GL_SAMPLES, &samples);
     printf("anti-aliasing      %s\n", prof ? prof->antialias

@@ -44,7 +44,7 @@ typedef struct shade_prog {
     GLint light_dir, albedo, light_color, shading, depth, tail, depth_v, tail_v, f0, a0_scale;
     GLint spread, inv_viewport, w0;
     GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls, wl;
-    GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES];
+    GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
 } shade_prog;
 
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */
@@ -84,7 +84,7 @@ struct jd_renderer {
     int diff_levels;      /* levels whose weights are not all zero */
     float proxy_error;    /* world units: how far the proxy may stray from the mesh */
     GLenum mesh_index_type;
-    shade_prog shade[JD_MODE_COUNT], a0;
+    shade_prog shade[JD_MODE_COUNT], a0, wide_prog; /* wide_prog: full's levels at half resolution */
     GLuint depth_prog, capture_prog, project_prog, reduce_faces_prog, reduce_final_prog, blur_prog, combine_prog;
     diff_prog diff_first, diff_next; /* level 1 from the light map; the others */
     GLuint aa_prog;
@@ -97,6 +97,7 @@ struct jd_renderer {
     target light, atlas, sh1, sh2, sh3, spread0, spread_tmp, spread1, spread2;
     target diff_tmp, diff_lv[DIFF_TEXTURES];
     target scene;         /* the frame before anti-aliasing (post_aa only) */
+    target wide;          /* full's levels summed at half resolution (without vertex diffusion) */
     size_t target_bytes;
     float box_half;
 };
@@ -320,6 +321,7 @@ static void shade_locations(shade_prog *p)
     }
     p->light_map_v = glGetUniformLocation(id, "u_light_map_v");
     p->light_dir_v = glGetUniformLocation(id, "u_light_dir_v");
+    p->wide = glGetUniformLocation(id, "u_wide");
     p->lw = glGetUniformLocation(id, "u_lw");
     p->ls = glGetUniformLocation(id, "u_ls");
     p->wl = glGetUniformLocation(id, "u_wl");
@@ -351,8 +353,10 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
         int translucent = m == JD_MODE_SINGLE || m == JD_MODE_DUAL;
         snprintf(def, sizeof def,
                  "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
-                 "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n",
-                 r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion);
+                 "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
+                 "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n",
+                 r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
+                 m == JD_MODE_FULL && !r->vertex_diffusion);
         /* v_pos v_normal v_shadow [v_light] [v_trans] [v_wide] */
         int varyings = translucent ? (r->vertex_thickness ? 4 : 5) : 3 + (m == JD_MODE_FULL && r->vertex_diffusion);
         if ((res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
@@ -362,12 +366,24 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     }
     snprintf(def, sizeof def,
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n"
-             "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL 0\n#define JD_VERTEX_DIFFUSION 0\n",
+             "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL 0\n#define JD_VERTEX_DIFFUSION 0\n"
+             "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 0\n",
              r->highp, r->vertex_thickness);
     if ((res = build(r, r->vertex_thickness ? 4 : 5, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
                      mesh_attribs, &r->a0.id, err)))
         return res;
     shade_locations(&r->a0);
+    if (!r->vertex_diffusion) {
+        snprintf(def, sizeof def,
+                 "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 0\n#define JD_SPREAD 0\n#define JD_A0_ONLY 0\n"
+                 "#define JD_VERTEX_THICKNESS 0\n#define JD_FULL 1\n#define JD_VERTEX_DIFFUSION 0\n"
+                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n",
+                 r->highp);
+        if ((res = build(r, 3, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
+                         err)))
+            return res;
+        shade_locations(&r->wide_prog);
+    }
 
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n", r->highp);
     if ((res = build(r, 2, "shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err))) return res;
@@ -535,6 +551,9 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
         (res = make_target(r, &r->spread2, sw, shh, 0, 1, "spread A2", err)) ||
         (res = make_target(r, &r->diff_tmp, d->diffusion_size, d->light_map_size, 0, 0, "diffusion blur", err)))
         goto fail;
+    if (!r->vertex_diffusion &&
+        (res = make_target(r, &r->wide, (d->max_width + 1) / 2, (d->max_height + 1) / 2, 1, 1, "full's levels", err)))
+        goto fail;
     if (r->post_aa && (res = make_target(r, &r->scene, d->max_width, d->max_height, 1, 1, "frame before anti-aliasing", err)))
         goto fail;
     for (int i = 0; i < DIFF_TEXTURES; i++)
@@ -553,7 +572,7 @@ void jd_renderer_destroy(jd_renderer *r)
 {
     if (!r) return;
     target *ts[] = {&r->light,   &r->atlas,   &r->sh1,     &r->sh2, &r->sh3, &r->spread0, &r->spread_tmp,
-                    &r->spread1, &r->spread2, &r->diff_tmp, &r->scene};
+                    &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->wide};
     for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++) free_target(ts[i]);
     for (int i = 0; i < DIFF_TEXTURES; i++) free_target(&r->diff_lv[i]);
     GLuint bufs[] = {r->mesh_vbo, r->mesh_ibo, r->proxy_vbo, r->proxy_ibo, r->cap_vbo, r->cap_ibo, r->quad_vbo};
@@ -561,6 +580,7 @@ void jd_renderer_destroy(jd_renderer *r)
     if (r->tail_tex) glDeleteTextures(1, &r->tail_tex);
     if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
+    glDeleteProgram(r->wide_prog.id);
     GLuint progs[] = {r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_faces_prog,
                       r->reduce_final_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id, r->aa_prog};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
@@ -580,6 +600,8 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
     r->d.height = height;
     r->scene.w = width;
     r->scene.h = height;
+    r->wide.w = (width + 1) / 2;
+    r->wide.h = (height + 1) / 2;
     int div = r->d.spread_divisor;
     target *spread[] = {&r->spread0, &r->spread_tmp, &r->spread1, &r->spread2};
     for (int i = 0; i < 4; i++) {
@@ -852,7 +874,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     if (p->depth_v >= 0) glUniform1i(p->depth_v, 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, r->light.tex);
-    if (p->wl >= 0) {
+    if (p->wl >= 0 || p->lw >= 0) { /* full: the local weight, the levels (either may be compiled out) */
         float lw[DIFF_LEVELS][3], ls[6] = {0}, wl[3] = {0};
         const jd_diffusion_fit *fit = &r->fit;
         for (int c = 0; c < 3; c++)
@@ -887,6 +909,13 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         glUniform1i(p->tail >= 0 ? p->tail : p->tail_v, 3);
         glActiveTexture(GL_TEXTURE3);
         glBindTexture(GL_TEXTURE_2D, r->tail_tex);
+        glActiveTexture(GL_TEXTURE0);
+    }
+    if (p->wide >= 0) {
+        glUniform1i(p->wide, 6);
+        glUniform2f(p->inv_viewport, (float)r->wide.w / r->wide.tw / (float)w, (float)r->wide.h / r->wide.th / (float)h);
+        glActiveTexture(GL_TEXTURE6);
+        glBindTexture(GL_TEXTURE_2D, r->wide.tex);
         glActiveTexture(GL_TEXTURE0);
     }
     if (p->spread >= 0) {
@@ -999,6 +1028,21 @@ static void pass_diffusion(jd_renderer *r, const frame_params *f)
             draw_quad_into(r, to);
         }
     }
+}
+
+/* Without vertex diffusion, full's levels are summed per fragment at half
+ * resolution: a quarter of the texture reads, and one bilinear read in the
+ * main pass. */
+static void pass_wide(jd_renderer *r, const frame_params *f)
+{
+    use_target(&r->wide);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
+    set_shade_uniforms(r, &r->wide_prog, f, r->wide.w, r->wide.h);
+    bind_mesh(r->mesh_vbo, r->mesh_ibo);
+    glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
 }
 
 static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
@@ -1114,6 +1158,7 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
         update_fit(r, s, &f);
         gpu_begin(r, stats, JD_PASS_DIFFUSION);
         pass_diffusion(r, &f);
+        if (!r->vertex_diffusion) pass_wide(r, &f);
         lap(r, stats, JD_PASS_DIFFUSION, &t);
     }
     if (s->mode == JD_MODE_SINGLE || s->mode == JD_MODE_DUAL) {

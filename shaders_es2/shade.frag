@@ -24,15 +24,22 @@ varying vec3 v_light;
 #endif
 varying vec3 v_trans;
 #endif
+#if JD_SPREAD || JD_WIDE_BUFFER
+uniform vec2 u_inv_viewport; // screen position to the used corner of the low-resolution layer
+#endif
 #if JD_SPREAD
 uniform sampler2D u_spread;  // sqrt((w1 A1 + w2 A2) / 2), alpha = covered
-uniform vec2 u_inv_viewport;
 uniform vec3 u_w0;
 #endif
 #if JD_FULL
 uniform vec3 u_wl;           // Rd's weight on the Gaussians finer than a level texel
 #if JD_VERTEX_DIFFUSION
 varying vec3 v_wide;         // the levels' light, per vertex (jd_diffused)
+#elif JD_WIDE_BUFFER
+// Where the vertex stage cannot read textures, the levels' light is summed
+// per fragment at half resolution (it is smooth: its finest Gaussian is a
+// level texel wide) and read here once: sqrt(wide / 2), alpha = covered.
+uniform sampler2D u_wide;
 #else
 // The five light-space levels: sqrt(S / (21/20)) and mean depth of the
 // light that entered near the map's surface (RG) and elsewhere (BA).
@@ -81,9 +88,19 @@ void main()
 #if JD_FULL
 #if JD_VERTEX_DIFFUSION
     vec3 wide = v_wide;
+#elif JD_WIDE_BUFFER
+    // Filtered with its coverage: a pixel on the silhouette takes the
+    // covered neighbours' light, not the empty background's.
+    vec4 wb = texture2D(u_wide, gl_FragCoord.xy * u_inv_viewport);
+    vec3 we = wb.a > 0.01 ? wb.rgb / wb.a : vec3(0.0);
+    vec3 wide = 2.0 * we * we;
 #else
     vec3 wide = jd_diffused(u_lv0, u_lv1, u_lv2, u_lv3, u_lv4, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map.w,
                             vis * clamp(4.0 * ndl, 0.0, 1.0));
+#endif
+#if JD_WIDE_ONLY
+    gl_FragColor = vec4(sqrt(clamp(0.5 * wide, 0.0, 1.0)), 1.0);
+    return;
 #endif
     vec3 mo = u_albedo * u_shading.x
             + u_light_color * (u_wl * (ndl * jd_fresnel_tc(ndl, u_light_map.z) * vis) + wide);
