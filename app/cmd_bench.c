@@ -103,7 +103,7 @@ int jd_cmd_bench(int argc, char **argv)
     if (!times) { fprintf(stderr, "jade bench: %s\n", err.msg); jd_session_close(&s); return 1; }
     /* Time to first frame: from process start to a finished frame. */
     jd_scene first = o.scene;
-    first.mode = strcmp(o.mode_list, "all") ? o.scene.mode : JD_MODE_DUAL;
+    first.mode = o.scene.mode; /* with "all": the default, full */
     if (jd_renderer_frame(s.renderer, &first, NULL, &err)) { fprintf(stderr, "jade bench: %s\n", err.msg); jd_session_close(&s); return 1; }
     jd_renderer_finish(s.renderer);
     double ttff = jd_now_ms() - s.t_start_ms;
