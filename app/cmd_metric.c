@@ -10,15 +10,15 @@
 
 #include "commands.h"
 #include "display_curve.h"
+#include "image_in.h"
 #include "image_metric.h"
 
 static float *read_image(const char *path, int *w, int *h, unsigned char **rgba, char *why, size_t cap)
 {
     size_t len = strlen(path);
     if (len > 4 && !strcmp(path + len - 4, ".pfm")) return jd_read_pfm(path, w, h, why, cap);
-    int c;
-    unsigned char *px = stbi_load(path, w, h, &c, 4);
-    if (!px) { snprintf(why, cap, "not a readable PNG (%s)", stbi_failure_reason()); return NULL; }
+    unsigned char *px = jd_image_load(path, w, h, 4, why, cap);
+    if (!px) return NULL;
     float *out = malloc((size_t)*w * *h * 3 * sizeof(float));
     if (!out) { stbi_image_free(px); snprintf(why, cap, "out of memory"); return NULL; }
     for (long i = 0; i < (long)*w * *h; i++)
@@ -73,10 +73,12 @@ int jd_cmd_metric(int argc, char **argv)
     long n = (long)w[0] * h[0];
     unsigned char *mask = malloc((size_t)n);
     if (mask_path) {
-        int mw, mh, c;
-        unsigned char *m = stbi_load(mask_path, &mw, &mh, &c, 1);
+        int mw, mh;
+        char why[160];
+        unsigned char *m = jd_image_load(mask_path, &mw, &mh, 1, why, sizeof why);
         if (!m || mw != w[0] || mh != h[0]) {
-            fprintf(stderr, "jade metric: %s: %s\n", mask_path, m ? "not the pictures' size" : "not a readable PNG");
+            fprintf(stderr, "jade metric: %s: %s\n", mask_path, m ? "not the pictures' size" : why);
+            stbi_image_free(m);
             return 1;
         }
         for (long i = 0; i < n; i++) mask[i] = m[i] != 0;

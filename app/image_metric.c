@@ -1,4 +1,5 @@
 #include "image_metric.h"
+#include "image_in.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -74,12 +75,13 @@ void jd_metric_compute(const float *a, const float *b, const unsigned char *mask
  * then rows from the bottom. */
 float *jd_read_pfm(const char *path, int *w, int *h, char *why, size_t cap)
 {
+    if (!jd_input_regular(path, why, cap)) return NULL;
     FILE *f = fopen(path, "rb");
     if (!f) { snprintf(why, cap, "cannot open"); return NULL; }
     char kind[3] = "";
     double scale = 0;
     if (fscanf(f, "%2s %d %d %lf", kind, w, h, &scale) != 4 || strcmp(kind, "PF") || *w <= 0 || *h <= 0 ||
-        *w > 16384 || *h > 16384 || scale >= 0 || fgetc(f) == EOF) {
+        *w > JD_IMAGE_MAX_SIDE || *h > JD_IMAGE_MAX_SIDE || scale >= 0 || fgetc(f) == EOF) {
         snprintf(why, cap, "not a little-endian colour PFM");
         fclose(f);
         return NULL;

@@ -1,5 +1,8 @@
-/* Pictures out: written to a temporary file beside `path` and renamed into
- * place, so a failed run never leaves a half-written file. */
+/* Pictures out: written to a new file beside `path`, flushed to the disk and
+ * renamed into place, so a failed run (a full disk included) never leaves a
+ * half-written file and never loses the previous one. An output is never
+ * written over anything but a regular file, nor over one of the run's
+ * inputs, nor through a symbolic link. */
 #ifndef JD_IMAGE_OUT_H
 #define JD_IMAGE_OUT_H
 #include <stdint.h>
@@ -8,4 +11,9 @@ jd_result jd_png_write(const char *path, int w, int h, const uint8_t *rgba, jd_e
 /* Little-endian colour PFM of w*h*3 floats given top row first (PFM files
  * store the bottom row first). */
 jd_result jd_pfm_write(const char *path, int w, int h, const float *rgb, jd_error *err);
+/* Remembers a file the run reads, so no output replaces it. */
+void jd_output_protect(const char *path);
+/* Whether `path` may be written: absent, or a regular file that is not an
+ * input. For checking outputs before the work starts. */
+jd_result jd_output_check(const char *path, jd_error *err);
 #endif

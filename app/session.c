@@ -1,5 +1,6 @@
 #include "session.h"
 
+#include "image_out.h"
 #include "profile.h"
 
 #include <stdio.h>
@@ -65,6 +66,18 @@ static int mesh_path(jd_session *s, jd_options *o, const char *cmd)
         fprintf(stderr, "jade %s: the default asset default.drc is not beside the program or in %s; pass --mesh\n", cmd,
                 JD_ASSET_INSTALL_DIR);
         return 0;
+    }
+    /* The run's inputs are never written over; its outputs are checked
+     * before any work (a reference takes a minute). */
+    jd_output_protect(s->mesh_path);
+    jd_output_protect(o->sheet_ref);
+    const char *outs[] = {o->out, o->sheet, o->pfm, o->mask_out, o->screenshot};
+    for (size_t i = 0; i < sizeof outs / sizeof outs[0]; i++) {
+        jd_error err = {0};
+        if (outs[i] && jd_output_check(outs[i], &err)) {
+            fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+            return 0;
+        }
     }
     return 1;
 }

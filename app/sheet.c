@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "font5x7.h"
+#include "image_in.h"
 #include "image_out.h"
 
 int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
@@ -14,11 +15,12 @@ int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
     const int band = 28, w = o->width, h = o->height;
     uint8_t *ref = NULL;
     if (o->sheet_ref) {
-        int rw, rh, rc;
-        ref = stbi_load(o->sheet_ref, &rw, &rh, &rc, 4);
+        int rw, rh;
+        char why[160];
+        ref = jd_image_load(o->sheet_ref, &rw, &rh, 4, why, sizeof why);
         if (!ref || rw != w || rh != h) {
             fprintf(stderr, "jade render: --sheet-reference: %s: %s\n", o->sheet_ref,
-                    ref ? "not the size of the sheet's pictures (--size)" : "not a readable PNG");
+                    ref ? "not the size of the sheet's pictures (--size)" : why);
             stbi_image_free(ref);
             return 1;
         }

@@ -109,7 +109,9 @@ static jd_result read_exact(reader *r, void *dst, size_t n, int *eof, jd_error *
 static jd_result read_file(const jd_load_desc *d, jd_arena *a, uint8_t **buf, size_t *n,
                            jd_error *err)
 {
-    int fd = open(d->path, O_RDONLY | O_CLOEXEC);
+    /* Non-blocking, so a FIFO with no writer is refused below instead of
+     * hanging the open. */
+    int fd = open(d->path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0)
         return jd_fail(err, JD_ERR_IO, "%s: cannot open: %s", d->path, strerror(errno));
     struct stat st;

@@ -39,7 +39,7 @@ expect "bad cube size" 2 "multiple of 8" -- "$jade" render --cube-size 60
 expect "missing mesh" 1 "cannot open" -- "$jade" render --mesh "$tmp/nope.drc" --out "$tmp/x.png"
 printf 'hello' > "$tmp/hello.drc"
 expect "non-draco mesh" 1 "not a Draco file" -- "$jade" render --mesh "$tmp/hello.drc" --out "$tmp/x.png"
-expect "unwritable output" 1 "cannot write PNG" -- "$jade" render --size 64x64 --out "$tmp/no/such/dir/x.png"
+expect "unwritable output" 1 "cannot write there" -- "$jade" render --size 64x64 --out "$tmp/no/such/dir/x.png"
 expect "tiny budget" 1 "memory budget exhausted" -- "$jade" render --budget-mb 1 --out "$tmp/x.png"
 left=$(ls "$tmp" | grep -c '\.tmp\.' || true)
 if [ ! -e "$tmp/x.png" ] && [ "$left" -eq 0 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: a failed run left output behind"; ls "$tmp"; fi
@@ -49,7 +49,7 @@ expect "sheet" 0 "none | single | dual | full" -- "$jade" render --size 64x64 --
 expect "info" 0 "fragment highp" -- "$jade" info
 expect "metric same" 0 '"ssim": 1.00000' -- "$jade" metric "$tmp/ok.png" "$tmp/ok.png"
 expect "metric one picture" 2 "needs two pictures" -- "$jade" metric "$tmp/ok.png"
-expect "metric unreadable" 1 "not a readable PNG" -- "$jade" metric "$tmp/hello.drc" "$tmp/ok.png"
+expect "metric unreadable" 1 "not a picture" -- "$jade" metric "$tmp/hello.drc" "$tmp/ok.png"
 expect "metric size mismatch" 1 "is 96x64 but" -- "$jade" metric "$tmp/ok.png" "$tmp/sheet.png"
 # The reference: small, so the suite stays fast; the same scene options.
 expect "reference help" 0 "--samples" -- "$jade" reference --help
@@ -57,7 +57,7 @@ expect "reference bad flag" 2 "unknown option '--mode'" -- "$jade" reference --m
 expect "reference bad samples" 2 "expected a whole number" -- "$jade" reference --samples 10
 expect "reference missing mesh" 1 "cannot open" -- "$jade" reference --mesh "$tmp/nope.drc" --out "$tmp/r.png"
 expect "reference non-draco" 1 "not a Draco file" -- "$jade" reference --mesh "$tmp/hello.drc" --out "$tmp/r.png"
-expect "reference unwritable" 1 "cannot write PNG" -- "$jade" reference --size 32x32 --out "$tmp/no/dir/r.png" --quiet
+expect "reference unwritable" 1 "cannot write there" -- "$jade" reference --size 32x32 --out "$tmp/no/dir/r.png" --quiet
 if [ ! -e "$tmp/r.png" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: a failed reference left r.png"; fi
 expect "reference" 0 "wrote $tmp/ref.png, $tmp/ref.pfm, $tmp/mask.png" -- \
     "$jade" reference --size 96x64 --out "$tmp/ref.png" --pfm "$tmp/ref.pfm" --mask "$tmp/mask.png" --samples 20000
@@ -82,5 +82,45 @@ expect "view bad screenshot" 2 "needs --frames" -- "$jade" view --screenshot "$t
 expect "info profile" 0 "per fragment (no vertex texture units)" -- "$jade" info --profile mali400
 expect "bad profile" 2 "unknown profile 'ps2'" -- "$jade" info --profile ps2
 expect "render bad profile" 2 "unknown profile 'ps2'" -- "$jade" render --profile ps2
+
+# Outputs never destroy anything; inputs that are not regular files (a FIFO
+# would block) or that declare huge pictures are refused at once.
+check() { if eval "$2"; then pass=$((pass + 1)); echo "ok   $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi; }
+mesh=$(dirname "$0")/../assets/default.drc
+cp "$mesh" "$tmp/m.drc"
+expect "out onto the mesh" 1 "is one of this run's inputs" -- "$jade" render --mesh "$tmp/m.drc" --size 32x32 --out "$tmp/m.drc"
+check "the mesh is intact" 'cmp -s "$mesh" "$tmp/m.drc"'
+expect "out onto a device" 1 "not a regular file" -- "$jade" render --size 32x32 --out /dev/null
+check "/dev/null is still a device" '[ -c /dev/null ]'
+echo keep > "$tmp/target"
+ln -s "$tmp/target" "$tmp/link.png"
+expect "out through a symlink" 1 "symbolic link" -- "$jade" render --size 32x32 --out "$tmp/link.png"
+check "the symlink's target is intact" '[ "$(cat "$tmp/target")" = keep ]'
+expect "reference out onto a device" 1 "not a regular file" -- "$jade" reference --size 16x16 --quiet --out /dev/null
+mkfifo "$tmp/fifo"
+expect "mesh is a FIFO" 1 "not a regular file" -- timeout 10 "$jade" render --mesh "$tmp/fifo" --out "$tmp/x.png"
+expect "metric input is a FIFO" 1 "not a regular file" -- timeout 10 "$jade" metric "$tmp/fifo" "$tmp/fifo"
+mkfifo "$tmp/fifo.pfm"
+expect "metric PFM is a FIFO" 1 "not a regular file" -- timeout 10 "$jade" metric "$tmp/fifo.pfm" "$tmp/fifo.pfm"
+"$jade" render --size 32x32 --out "$tmp/a.png" >/dev/null 2>&1
+expect "mask is a FIFO" 1 "not a regular file" -- timeout 10 "$jade" metric "$tmp/a.png" "$tmp/a.png" --mask "$tmp/fifo"
+expect "sheet reference is a FIFO" 1 "not a regular file" -- \
+    timeout 10 "$jade" render --size 32x32 --sheet "$tmp/s.png" --sheet-reference "$tmp/fifo"
+# A 154-byte BMP whose header declares 100000 x 100000 pixels (30 GB decoded).
+printf 'BM\232\0\0\0\0\0\0\0\66\0\0\0\50\0\0\0\240\206\1\0\240\206\1\0\1\0\30\0' > "$tmp/bomb.bmp"
+head -c 120 /dev/zero >> "$tmp/bomb.bmp"
+expect "picture bomb" 1 "over the limit of 4096x4096" -- timeout 10 "$jade" metric "$tmp/bomb.bmp" "$tmp/a.png"
+# A full disk: a 64 KiB tmpfs (root only); the previous picture survives.
+mkdir -p "$tmp/small"
+if [ "$(id -u)" -eq 0 ] && mount -t tmpfs -o size=64k tmpfs "$tmp/small" 2>/dev/null; then
+    "$jade" render --size 32x32 --out "$tmp/small/pic.png" >/dev/null 2>&1
+    cp "$tmp/small/pic.png" "$tmp/prev.png"
+    expect "disk full" 1 "No space left on device" -- "$jade" render --size 512x512 --out "$tmp/small/pic.png"
+    check "the previous picture survives a full disk" 'cmp -s "$tmp/small/pic.png" "$tmp/prev.png"'
+    check "no temporary file is left" '[ "$(ls "$tmp/small" | wc -l)" -eq 1 ]'
+    umount "$tmp/small"
+else
+    echo "skip full disk: needs root and a tmpfs mount"
+fi
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
