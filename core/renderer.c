@@ -939,18 +939,26 @@ static void blur(jd_renderer *r, GLint step_loc, GLint inv_loc, const target *sr
     draw_quad_into(r, dst);
 }
 
-static void pass_spread(jd_renderer *r, const frame_params *f)
+/* A low-resolution layer drawn with a shading program: cleared to "not
+ * covered" (alpha 0), depth-tested, culled as the main pass. */
+static void draw_layer(jd_renderer *r, const target *t, const shade_prog *p, const frame_params *f, GLuint vbo,
+                       GLuint ibo, uint32_t count, GLenum index_type)
 {
-    /* A0 at low resolution from the coarse capture proxy: these layers are
-     * blurred, so a finer mesh would buy nothing but vertex work. */
-    use_target(&r->spread0);
+    use_target(t);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
-    set_shade_uniforms(r, &r->a0, f, r->spread0.w, r->spread0.h);
-    bind_mesh(r->cap_vbo, r->cap_ibo);
-    glDrawElements(GL_TRIANGLES, (GLsizei)r->capture_proxy.num_indices, GL_UNSIGNED_SHORT, 0);
+    set_shade_uniforms(r, p, f, t->w, t->h);
+    bind_mesh(vbo, ibo);
+    glDrawElements(GL_TRIANGLES, (GLsizei)count, index_type, 0);
+}
+
+static void pass_spread(jd_renderer *r, const frame_params *f)
+{
+    /* A0 at low resolution from the coarse capture proxy: these layers are
+     * blurred, so a finer mesh would buy nothing but vertex work. */
+    draw_layer(r, &r->spread0, &r->a0, f, r->cap_vbo, r->cap_ibo, r->capture_proxy.num_indices, GL_UNSIGNED_SHORT);
 
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -1035,14 +1043,7 @@ static void pass_diffusion(jd_renderer *r, const frame_params *f)
  * main pass. */
 static void pass_wide(jd_renderer *r, const frame_params *f)
 {
-    use_target(&r->wide);
-    glClearColor(0, 0, 0, 0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_DEPTH_TEST);
-    if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
-    set_shade_uniforms(r, &r->wide_prog, f, r->wide.w, r->wide.h);
-    bind_mesh(r->mesh_vbo, r->mesh_ibo);
-    glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
+    draw_layer(r, &r->wide, &r->wide_prog, f, r->mesh_vbo, r->mesh_ibo, r->d.mesh->num_indices, r->mesh_index_type);
 }
 
 static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)

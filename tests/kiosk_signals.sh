@@ -31,13 +31,9 @@ run() { # run PLATFORM SIGNAL [env...]
 run headless TERM
 run headless INT
 if command -v Xvfb >/dev/null; then
-    d=95
-    while [ -e "/tmp/.X$d-lock" ] || [ -e "/tmp/.X11-unix/X$d" ]; do d=$((d + 1)); done
-    Xvfb ":$d" -screen 0 640x480x24 -nolisten tcp >/dev/null 2>&1 &
-    xpid=$!
-    trap 'kill $xpid 2>/dev/null' EXIT
-    i=0
-    while [ ! -e "/tmp/.X11-unix/X$d" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+    xvfb_first=95
+    . "$(dirname "$0")/xvfb.sh"
+    d=$DISPLAY_NUM
     run x11 TERM DISPLAY=":$d"
     run x11 INT DISPLAY=":$d"
 else

@@ -109,7 +109,7 @@ int main(int argc, char **argv)
                 s.light_azimuth = 3.6f * i;
                 if (jd_renderer_frame(r, &s, NULL, &err)) { CHECK(0, "frame: %s", err.msg); break; }
             }
-        printf("core heap calls during 300 frames (100 per mode): %lu\n", core_allocs);
+        printf("core heap calls during %d frames (100 per mode): %lu\n", 100 * JD_MODE_COUNT, core_allocs);
         CHECK(core_allocs == 0, "the frame loop allocates nothing (%lu calls)", core_allocs);
         printf("render targets: %zu bytes at 64x64\n", jd_renderer_target_bytes(r));
         if (caps.frag_highp_precision >= 23) test_sh_reduction(r, jd_renderer_highp(r) ? "highp" : "mediump", 0.01);

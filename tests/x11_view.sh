@@ -6,13 +6,9 @@ jade=$1 imgcmp=$2 out=$3
 if ! command -v Xvfb >/dev/null; then
     echo "SKIP: Xvfb is missing: install xvfb (tools/setup.sh does, and says when it cannot)"; exit 77
 fi
-d=90
-while [ -e "/tmp/.X$d-lock" ] || [ -e "/tmp/.X11-unix/X$d" ]; do d=$((d + 1)); done
-Xvfb ":$d" -screen 0 640x480x24 -nolisten tcp >/dev/null 2>&1 &
-xpid=$!
-trap 'kill $xpid 2>/dev/null' EXIT
-i=0
-while [ ! -e "/tmp/.X11-unix/X$d" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+xvfb_first=90
+. "$(dirname "$0")/xvfb.sh"
+d=$DISPLAY_NUM
 pass=0 fail=0
 check() { if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); fi; }
 # The same picture both ways: edges without anti-aliasing (the window may
