@@ -14,6 +14,7 @@ int jd_cmd_render(int argc, char **argv)
                                 "Renders a Draco mesh in translucent material, headless, to a PNG.", argc, argv);
     if (rc >= 0) return rc;
     if (!o.frames) o.frames = 1;
+    if (o.sheet) o.out = NULL; /* the sheet is the only picture written: --out is not checked */
 
     jd_session s;
     if (!jd_session_open(&s, &o, "render")) { jd_session_close(&s); return 1; }

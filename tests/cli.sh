@@ -96,6 +96,8 @@ echo keep > "$tmp/target"
 ln -s "$tmp/target" "$tmp/link.png"
 expect "out through a symlink" 1 "symbolic link" -- "$jade" render --size 32x32 --out "$tmp/link.png"
 check "the symlink's target is intact" '[ "$(cat "$tmp/target")" = keep ]'
+expect "sheet leaves --out alone" 0 "wrote" -- "$jade" render --size 32x32 --out /dev/null --sheet "$tmp/s2.png"
+check "/dev/null is still a device after the sheet" '[ -c /dev/null ]'
 expect "reference out onto a device" 1 "not a regular file" -- "$jade" reference --size 16x16 --quiet --out /dev/null
 mkfifo "$tmp/fifo"
 expect "mesh is a FIFO" 1 "not a regular file" -- timeout 10 "$jade" render --mesh "$tmp/fifo" --out "$tmp/x.png"
