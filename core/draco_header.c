@@ -45,31 +45,46 @@ static int rd_skip(rd *r, size_t k)
     return 1;
 }
 
+/* libdraco 1.5.5 decodes metadata nested up to 1,001 levels below the
+ * top (measured: 1,001 decodes, 1,002 is "Failed to decode metadata"). */
+enum { MAX_SUB_LEVELS = 1001 };
+
 /* Metadata: entries (u8 name length, name, varint size, bytes) then named
- * sub-metadata, recursively. libdraco loops over the declared counts even
- * after reads fail, so a huge count alone can burn seconds: every count is
- * bounded by the bytes that remain. */
-static int skip_metadata(rd *r, int depth)
+ * sub-metadata, depth first. Walked with a fixed stack of the subs left at
+ * each level, not by recursion: a 3-byte level cannot exhaust the C stack.
+ * libdraco loops over the declared counts even after reads fail, so a huge
+ * count alone can burn seconds: every count is bounded by the bytes that
+ * remain. Returns 1, 0 (corrupt) or -1 (deeper than libdraco reads). */
+static int skip_metadata(rd *r)
 {
-    uint32_t entries, subs, len;
-    if (depth > 16 || !rd_varint(r, &entries) || entries > (r->n - r->at) / 2) return 0;
-    for (uint32_t i = 0; i < entries; i++)
-        if (!rd_u8(r, &len) || !rd_skip(r, len) || !rd_varint(r, &len) || len == 0 ||
-            !rd_skip(r, len))
-            return 0;
-    if (!rd_varint(r, &subs) || subs > (r->n - r->at) / 2) return 0;
-    for (uint32_t i = 0; i < subs; i++)
-        if (!rd_u8(r, &len) || !rd_skip(r, len) || !skip_metadata(r, depth + 1)) return 0;
-    return 1;
+    uint32_t left[MAX_SUB_LEVELS + 1];
+    int depth = 0;
+    for (;;) {
+        uint32_t entries, subs, len;
+        if (!rd_varint(r, &entries) || entries > (r->n - r->at) / 2) return 0;
+        for (uint32_t i = 0; i < entries; i++)
+            if (!rd_u8(r, &len) || !rd_skip(r, len) || !rd_varint(r, &len) || len == 0 || !rd_skip(r, len))
+                return 0;
+        if (!rd_varint(r, &subs) || subs > (r->n - r->at) / 2) return 0;
+        left[depth] = subs;
+        while (left[depth] == 0)
+            if (depth-- == 0) return 1;
+        left[depth]--;
+        if (depth == MAX_SUB_LEVELS) return -1;
+        depth++;
+        if (!rd_u8(r, &len) || !rd_skip(r, len)) return 0; /* the sub-metadata's name */
+    }
 }
 
 static int skip_geometry_metadata(rd *r)
 {
     uint32_t atts, id;
     if (!rd_varint(r, &atts) || atts > (r->n - r->at) / 3) return 0;
-    for (uint32_t i = 0; i < atts; i++)
-        if (!rd_varint(r, &id) || !skip_metadata(r, 0)) return 0;
-    return skip_metadata(r, 0);
+    for (uint32_t i = 0; i < atts; i++) {
+        int ok = rd_varint(r, &id) ? skip_metadata(r) : 0;
+        if (ok != 1) return ok;
+    }
+    return skip_metadata(r);
 }
 
 jd_result jd_draco_peek(const uint8_t *buf, size_t n, const char *name, jd_draco_info *info,
@@ -99,8 +114,11 @@ jd_result jd_draco_peek(const uint8_t *buf, size_t n, const char *name, jd_draco
     info->edgebreaker = method == 1;
     uint32_t flags = flags_lo | flags_hi << 8;
     info->has_metadata = (flags & 0x8000) && version >= 0x0103;
-    if (info->has_metadata && !skip_geometry_metadata(&r))
-        return jd_fail(err, JD_ERR_FORMAT, "%s: corrupt Draco metadata block", name);
+    int meta = info->has_metadata ? skip_geometry_metadata(&r) : 1;
+    if (meta < 0)
+        return jd_fail(err, JD_ERR_FORMAT, "%s: Draco metadata nested more than %d levels deep (libdraco's limit)",
+                       name, MAX_SUB_LEVELS);
+    if (!meta) return jd_fail(err, JD_ERR_FORMAT, "%s: corrupt Draco metadata block", name);
 
     int old = version < 0x0200;   /* fixed-width counts */
     int ok;

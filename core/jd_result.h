@@ -18,10 +18,14 @@ typedef enum jd_result {
     JD_ERR_PLATFORM     /* display / context creation failed */
 } jd_result;
 
+/* Room for a message naming two paths of the longest length Linux allows
+ * (4,095 bytes each) and the reason: messages are never cut. */
+#define JD_ERROR_MSG_SIZE (2 * 4096 + 512)
+
 /* One line of text saying what failed and why; filled by the call that failed. */
 typedef struct jd_error {
     jd_result code;
-    char msg[320];
+    char msg[JD_ERROR_MSG_SIZE];
 } jd_error;
 
 /* Records code and a printf-style message in err (err may be NULL); returns code. */

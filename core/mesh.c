@@ -28,6 +28,16 @@ jd_result jd_mesh_validate(const jd_mesh *m, const char *name, jd_error *err)
     return JD_OK;
 }
 
+jd_result jd_mesh_check_finite(const float *v, uint32_t num_vertices, int comps, const char *what, const char *name,
+                               jd_error *err)
+{
+    for (uint32_t i = 0; i < num_vertices * (uint32_t)comps; i++)
+        if (!isfinite(v[i]))
+            return jd_fail(err, JD_ERR_FORMAT, "%s: vertex %u has a non-finite %s (%g); refused", name,
+                           i / (uint32_t)comps, what, (double)v[i]);
+    return JD_OK;
+}
+
 void jd_mesh_compute_bounds(jd_mesh *m)
 {
     const float *p = m->positions;

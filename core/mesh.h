@@ -22,6 +22,10 @@ uint32_t jd_mesh_index(const jd_mesh *m, uint32_t i);
 
 /* Every index in range and every position finite and within +-1e6. */
 jd_result jd_mesh_validate(const jd_mesh *m, const char *name, jd_error *err);
+/* A file's normals or texture coordinates with a NaN or an infinity are
+ * refused, not repaired: the file is broken and should be said to be. */
+jd_result jd_mesh_check_finite(const float *v, uint32_t num_vertices, int comps, const char *what, const char *name,
+                               jd_error *err);
 void jd_mesh_compute_bounds(jd_mesh *m);
 /* Where the renderer puts a mesh: its box centre at the origin and its half
  * box diagonal as the unit of length, world = (p - centre) / radius. */

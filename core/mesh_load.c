@@ -276,6 +276,9 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
         goto fail;
     }
     r = jd_mesh_validate(out, d.path, err);
+    if (!r && (h.flags & JD_DRACO_HAS_NORMALS))
+        r = jd_mesh_check_finite(out->normals, out->num_vertices, 3, "normal", d.path, err);
+    if (!r && out->uvs) r = jd_mesh_check_finite(out->uvs, out->num_vertices, 2, "texture coordinate", d.path, err);
     if (r) goto fail;
     jd_mesh_compute_bounds(out);
     /* Culling and the light map take the winding for the outside; shading

@@ -160,6 +160,33 @@ static void test_draco_header(void)
     uint8_t meta[] = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 0, 0, 0x80, 0xff, 0xff, 0xff, 0xff, 0x0f, 0, 0};
     CHECK(jd_draco_peek(meta, sizeof meta, "m.drc", &info, &err) == JD_ERR_FORMAT && strstr(err.msg, "metadata"),
           "absurd metadata counts refused: %s", err.msg);
+    /* Valid metadata nested as deep as libdraco reads (1,001 levels below
+     * the top) passes; one level more is refused by name; 100,000 levels
+     * (300 KB) neither recurse nor overflow anything. */
+    static uint8_t deep[11 + 3 + 3 * 100000 + 2 + 8];
+    int depths[] = {17, 1001, 1002, 100000};
+    for (int k = 0; k < 4; k++) {
+        size_t n = 0;
+        static const uint8_t head[11] = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 0, 0, 0x80};
+        memcpy(deep, head, sizeof head);
+        n = sizeof head;
+        deep[n++] = 0; /* no attribute metadata */
+        for (int d = 0; d < depths[k]; d++) {
+            deep[n++] = 0;  /* entries */
+            deep[n++] = 1;  /* one sub-metadata */
+            deep[n++] = 0;  /* with an empty name */
+        }
+        deep[n++] = 0; /* the innermost: no entries */
+        deep[n++] = 0; /* and no subs */
+        deep[n++] = 4; /* 4 faces, 4 vertices (sequential 2.2: varints) */
+        deep[n++] = 4;
+        jd_result r = jd_draco_peek(deep, n, "deep.drc", &info, &err);
+        if (depths[k] <= 1001)
+            CHECK(r == JD_OK && info.num_faces == 4, "metadata %d deep accepted: %s", depths[k], r ? err.msg : "ok");
+        else
+            CHECK(r == JD_ERR_FORMAT && strstr(err.msg, "1001 levels"), "metadata %d deep refused: %s", depths[k],
+                  err.msg);
+    }
 }
 
 static void test_sh(void)
