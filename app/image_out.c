@@ -1,6 +1,10 @@
+#define _GNU_SOURCE /* O_TMPFILE */
 #include "image_out.h"
 
 #include <errno.h>
+#include <limits.h>
+#include <stdint.h>
+#include <time.h>
 #include <fcntl.h>
 #include <libgen.h>
 #include <stdio.h>
@@ -24,11 +28,19 @@ void jd_output_protect(const char *path)
     num_inputs++;
 }
 
+/* The folder that holds `path`, for the new file and the final fsync. */
+static void parent_dir(const char *path, char *dir, size_t cap)
+{
+    snprintf(dir, cap, "%s", path);
+    char *d = dirname(dir);
+    if (d != dir) memmove(dir, d, strlen(d) + 1);
+}
+
 jd_result jd_output_check(const char *path, jd_error *err)
 {
-    char dir[4096];
-    snprintf(dir, sizeof dir, "%s", path);
-    if (access(dirname(dir), W_OK) != 0)
+    char dir[PATH_MAX];
+    parent_dir(path, dir, sizeof dir);
+    if (access(dir, W_OK) != 0)
         return jd_fail(err, JD_ERR_IO, "%s: cannot write there: %s", path, strerror(errno));
     struct stat st;
     if (lstat(path, &st) != 0) return JD_OK; /* a new file */
@@ -60,35 +72,72 @@ static void sink_write(void *ctx, void *data, int size)
 
 typedef int (*writer)(sink *s, int w, int h, const void *px);
 
-/* A new file beside `path` (same file system, so the rename is atomic),
- * created exclusively under an unpredictable name: nothing planted there
- * in advance can redirect the write. Written, flushed to the disk, then
- * renamed over `path`: a full disk or any other failure leaves the
- * previous picture as it was. */
+/* The new file. Where the file system allows (ext4, xfs, btrfs, tmpfs), an
+ * unnamed O_TMPFILE: a run killed mid-write leaves nothing behind at all.
+ * Elsewhere a name made by mkstemp (O_EXCL, unpredictable): nothing planted
+ * there in advance can redirect the write. */
+static int create_temp(const char *path, const char *dir, char *tmp, size_t cap, int *named)
+{
+    *named = 0;
+#ifdef O_TMPFILE
+    int fd = open(dir, O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
+    if (fd >= 0) return fd;
+#endif
+    if (snprintf(tmp, cap, "%s.XXXXXX", path) >= (int)cap) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    fd = mkstemp(tmp);
+    if (fd >= 0) {
+        fchmod(fd, 0644);
+        *named = 1;
+    }
+    return fd;
+}
+
+/* Gives the unnamed file a name beside `path`, so that it can be renamed
+ * over it (linkat cannot replace a file). */
+static int name_temp(int fd, const char *path, char *tmp, size_t cap)
+{
+    char proc[64];
+    snprintf(proc, sizeof proc, "/proc/self/fd/%d", fd);
+    for (int attempt = 0; attempt < 100; attempt++) {
+        unsigned v = (unsigned)getpid() * 2654435761u ^ (unsigned)clock() ^ (unsigned)attempt * 40503u ^
+                     (unsigned)(uintptr_t)&v;
+        if (snprintf(tmp, cap, "%s.%08x", path, v) >= (int)cap) { errno = ENAMETOOLONG; return -1; }
+        if (linkat(AT_FDCWD, proc, AT_FDCWD, tmp, AT_SYMLINK_FOLLOW) == 0) return 0;
+        if (errno != EEXIST) return -1;
+    }
+    return -1;
+}
+
+/* Written, flushed to the disk, then renamed over `path`: a full disk, a
+ * kill or any other failure leaves the previous picture as it was. */
 static jd_result write_atomic(const char *path, const char *kind, writer fn, int w, int h, const void *px,
                               jd_error *err)
 {
     jd_result r = jd_output_check(path, err);
     if (r) return r;
-    char tmp[4096];
-    if (snprintf(tmp, sizeof tmp, "%s.XXXXXX", path) >= (int)sizeof tmp)
-        return jd_fail(err, JD_ERR_ARG, "%s: path too long", path);
-    int fd = mkstemp(tmp);
+    char dir[PATH_MAX], tmp[PATH_MAX + 16];
+    parent_dir(path, dir, sizeof dir);
+    int named;
+    int fd = create_temp(path, dir, tmp, sizeof tmp, &named);
     if (fd < 0) return jd_fail(err, JD_ERR_IO, "%s: cannot create a file beside it: %s", path, strerror(errno));
-    fchmod(fd, 0644);
     sink s = {fdopen(fd, "wb"), 0, 0};
     if (!s.f) {
         int e = errno;
         close(fd);
-        unlink(tmp);
+        if (named) unlink(tmp);
         return jd_fail(err, JD_ERR_IO, "%s: cannot write %s: %s", path, kind, strerror(e));
     }
     int ok = fn(&s, w, h, px) && !s.failed;
     if (ok && fflush(s.f) != 0) { s.err = errno; ok = 0; }
     if (ok && fsync(fileno(s.f)) != 0) { s.err = errno; ok = 0; }
+    if (ok && !named && name_temp(fileno(s.f), path, tmp, sizeof tmp) != 0) { s.err = errno; ok = 0; }
+    else if (ok) named = 1;
     if (fclose(s.f) != 0 && ok) { s.err = errno; ok = 0; }
     if (!ok) {
-        unlink(tmp);
+        if (named) unlink(tmp);
         return jd_fail(err, JD_ERR_IO, "%s: cannot write %s: %s", path, kind,
                        s.err ? strerror(s.err) : "encoder failed");
     }
@@ -96,6 +145,12 @@ static jd_result write_atomic(const char *path, const char *kind, writer fn, int
         int e = errno;
         unlink(tmp);
         return jd_fail(err, JD_ERR_IO, "%s: cannot move %s into place: %s", path, kind, strerror(e));
+    }
+    /* The rename itself reaches the disk with the folder. */
+    int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dfd >= 0) {
+        fsync(dfd);
+        close(dfd);
     }
     return JD_OK;
 }
