@@ -6,6 +6,7 @@
 
 #include "alloc_count.h"
 #include "commands.h"
+#include "json_out.h"
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -108,13 +109,18 @@ int jd_cmd_bench(int argc, char **argv)
     jd_renderer_finish(s.renderer);
     double ttff = jd_now_ms() - s.t_start_ms;
 
-    printf("{\n  \"mesh\": \"%s\", \"triangles\": %u, \"vertices\": %u, \"proxy_triangles\": %u,\n", s.mesh_path,
-           s.mesh.num_indices / 3, s.mesh.num_vertices, jd_renderer_proxy(s.renderer)->num_indices / 3);
-    printf("  \"size\": \"%dx%d\", \"frames\": %d, \"material\": \"%s\", \"cube_size\": %d, \"precision\": \"%s\",\n",
-           o.width, o.height, o.frames, o.material, o.rdesc.cube_size ? o.rdesc.cube_size : 64,
-           jd_renderer_highp(s.renderer) ? "highp" : "mediump");
-    printf("  \"gl_renderer\": \"%s\", \"platform\": \"%s\", \"gpu_timer_query\": %s,\n", s.caps.renderer,
-           jd_platform_describe(s.platform), jd_renderer_has_gpu_timer(s.renderer) ? "true" : "false");
+    printf("{\n  \"mesh\": ");
+    jd_json_string(stdout, s.mesh_path);
+    printf(", \"triangles\": %u, \"vertices\": %u, \"proxy_triangles\": %u,\n", s.mesh.num_indices / 3,
+           s.mesh.num_vertices, jd_renderer_proxy(s.renderer)->num_indices / 3);
+    printf("  \"size\": \"%dx%d\", \"frames\": %d, \"material\": ", o.width, o.height, o.frames);
+    jd_json_string(stdout, o.material);
+    printf(", \"cube_size\": %d, \"precision\": \"%s\",\n  \"gl_renderer\": ",
+           o.rdesc.cube_size ? o.rdesc.cube_size : 64, jd_renderer_highp(s.renderer) ? "highp" : "mediump");
+    jd_json_string(stdout, s.caps.renderer);
+    printf(", \"platform\": ");
+    jd_json_string(stdout, jd_platform_describe(s.platform));
+    printf(", \"gpu_timer_query\": %s,\n", jd_renderer_has_gpu_timer(s.renderer) ? "true" : "false");
     printf("  \"time_to_first_frame_ms\": %.1f, \"draco_decode_ms\": %.2f, \"file_bytes\": %zu,\n", ttff,
            s.load.decode_ms, s.load.file_bytes);
     printf("  \"arena_budget_bytes\": %zu, \"arena_peak_bytes\": %zu, \"render_target_bytes\": %zu,\n", s.arena.size,

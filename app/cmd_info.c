@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "options.h"
 #include "gl.h"
 #include "gl_caps.h"
 #include "platform.h"
@@ -9,30 +10,18 @@
 
 int jd_cmd_info(int argc, char **argv)
 {
-    const jd_profile *prof = NULL;
-    for (int i = 2; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: jade info [--profile NAME]\nPrints the GL device's limits and the extensions jade can use;\n"
-                   "with --profile, the limits jade enforces when emulating that device:\n");
-            for (int k = 0; k < jd_profile_count; k++)
-                printf("  %-9s %s\n", jd_profiles[k].name, jd_profiles[k].summary);
-            return 0;
-        }
-        if (!strcmp(argv[i], "--profile")) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "jade info: --profile needs a value (see jade info --help)\n");
-                return 2;
-            }
-            prof = jd_profile_find(argv[++i]);
-            if (!prof) {
-                fprintf(stderr, "jade info: --profile: unknown profile '%s' (have: generic, vc4, mali400)\n", argv[i]);
-                return 2;
-            }
-            continue;
-        }
-        fprintf(stderr, "jade info: unknown option '%s' (see jade info --help)\n", argv[i]);
-        return 2;
-    }
+    jd_options o;
+    jd_options_defaults(&o);
+    char summary[1024];
+    int at = snprintf(summary, sizeof summary,
+                      "Prints the GL device's limits and the extensions jade can use;\n"
+                      "with --profile, the limits jade enforces when emulating that device:");
+    for (int k = 0; k < jd_profile_count && at < (int)sizeof summary; k++)
+        at += snprintf(summary + at, sizeof summary - (size_t)at, "\n  %-9s %s", jd_profiles[k].name,
+                       jd_profiles[k].summary);
+    int rc = jd_options_command(&o, JD_OPT_INFO, "info", summary, argc, argv);
+    if (rc >= 0) return rc;
+    const jd_profile *prof = o.profile ? jd_profile_find(o.profile) : NULL;
     jd_error err = {0};
     jd_platform *p = NULL;
     jd_platform_desc pd = {.kind = "headless", .width = 64, .height = 64};

@@ -1,6 +1,7 @@
 /* jade metric A B [--mask M]: how far picture A is from the reference B,
  * in linear light, as JSON. PNGs are jade's display encoding (undone);
  * PFMs are linear already. */
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,12 +13,22 @@
 #include "display_curve.h"
 #include "image_in.h"
 #include "image_metric.h"
+#include "json_out.h"
+#include "options.h"
 
+/* Chosen by content, not by name: a PFM starts "PF" and white space. */
 static float *read_image(const char *path, int *w, int *h, unsigned char **rgba, char *why, size_t cap)
 {
-    size_t len = strlen(path);
-    if (len > 4 && !strcmp(path + len - 4, ".pfm")) return jd_read_pfm(path, w, h, why, cap);
-    unsigned char *px = jd_image_load(path, w, h, 4, why, cap);
+    size_t n;
+    unsigned char *buf = jd_input_read(path, &n, why, cap);
+    if (!buf) return NULL;
+    if (n > 2 && buf[0] == 'P' && buf[1] == 'F' && isspace(buf[2])) {
+        float *img = jd_pfm_decode(buf, n, w, h, why, cap);
+        free(buf);
+        return img;
+    }
+    unsigned char *px = jd_image_decode(buf, n, w, h, 4, why, cap);
+    free(buf);
     if (!px) return NULL;
     float *out = malloc((size_t)*w * *h * 3 * sizeof(float));
     if (!out) { stbi_image_free(px); snprintf(why, cap, "out of memory"); return NULL; }
@@ -27,79 +38,87 @@ static float *read_image(const char *path, int *w, int *h, unsigned char **rgba,
     return out;
 }
 
-int jd_cmd_metric(int argc, char **argv)
+static int metric(const char *paths[2], const char *mask_path)
 {
-    const char *paths[2] = {NULL, NULL}, *mask_path = NULL;
-    int np = 0;
-    for (int i = 2; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: jade metric A B [--mask M.png]\n"
-                   "Compares picture A with the reference B in linear light (PNGs in jade's display encoding, or\n"
-                   "linear PFMs): RMSE, PSNR and SSIM over the object's pixels, and the same after the single\n"
-                   "best global scale of A. The object is M's nonzero pixels, or where either picture differs\n"
-                   "from its top-left (background) pixel. Prints JSON. jade's PNGs clip at linear 1.18 (its\n"
-                   "tone curve reaches white there): compare PFMs where brighter values matter.\n");
-            return 0;
-        }
-        if (!strcmp(argv[i], "--mask")) {
-            if (i + 1 >= argc) { fprintf(stderr, "jade metric: --mask needs a value\n"); return 2; }
-            mask_path = argv[++i];
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            fprintf(stderr, "jade metric: unknown option '%s' (see jade metric --help)\n", argv[i]);
-            return 2;
-        } else if (np < 2) {
-            paths[np++] = argv[i];
-        } else {
-            fprintf(stderr, "jade metric: one picture too many: '%s'\n", argv[i]);
-            return 2;
-        }
-    }
-    if (np != 2) { fprintf(stderr, "jade metric: needs two pictures, A and the reference B\n"); return 2; }
-    int w[2], h[2];
-    unsigned char *rgba[2] = {NULL, NULL};
-    float *img[2];
+    int w[2] = {0, 0}, h[2] = {0, 0}, rc = 1;
+    unsigned char *rgba[2] = {NULL, NULL}, *mask = NULL, *m = NULL;
+    float *img[2] = {NULL, NULL};
     char why[160];
     for (int k = 0; k < 2; k++) {
         img[k] = read_image(paths[k], &w[k], &h[k], &rgba[k], why, sizeof why);
         if (!img[k]) {
             fprintf(stderr, "jade metric: %s: %s\n", paths[k], why);
-            return 1;
+            goto done;
         }
     }
     if (w[0] != w[1] || h[0] != h[1]) {
         fprintf(stderr, "jade metric: %s is %dx%d but %s is %dx%d\n", paths[0], w[0], h[0], paths[1], w[1], h[1]);
-        return 1;
+        goto done;
     }
-    long n = (long)w[0] * h[0];
-    unsigned char *mask = malloc((size_t)n);
+    long n = (long)w[0] * h[0], pixels = 0;
+    mask = malloc((size_t)n);
+    if (!mask) { fprintf(stderr, "jade metric: out of memory for a %dx%d mask\n", w[0], h[0]); goto done; }
     if (mask_path) {
         int mw, mh;
-        char why[160];
-        unsigned char *m = jd_image_load(mask_path, &mw, &mh, 1, why, sizeof why);
+        m = jd_image_load(mask_path, &mw, &mh, 1, why, sizeof why);
         if (!m || mw != w[0] || mh != h[0]) {
             fprintf(stderr, "jade metric: %s: %s\n", mask_path, m ? "not the pictures' size" : why);
-            stbi_image_free(m);
-            return 1;
+            goto done;
         }
-        for (long i = 0; i < n; i++) mask[i] = m[i] != 0;
-        stbi_image_free(m);
+        for (long i = 0; i < n; i++) pixels += mask[i] = m[i] != 0;
     } else {
         for (long i = 0; i < n; i++) {
             int differs = 0;
             for (int k = 0; k < 2; k++)
                 for (int c = 0; c < 3; c++)
                     if (fabsf(img[k][3 * i + c] - img[k][c]) > 1e-4f) differs = 1;
-            mask[i] = (unsigned char)differs;
+            pixels += mask[i] = (unsigned char)differs;
         }
     }
-    jd_metric m;
-    jd_metric_compute(img[0], img[1], mask, w[0], h[0], &m);
-    printf("{\"a\": \"%s\", \"b\": \"%s\", \"pixels\": %ld, \"rmse\": %.6f, \"psnr_db\": %.3f, \"ssim\": %.5f, "
+    /* No pixel to compare: any figure would be a made-up perfect score. */
+    if (pixels == 0) {
+        if (mask_path)
+            fprintf(stderr, "jade metric: %s: the mask has no nonzero pixel; nothing to compare\n", mask_path);
+        else
+            fprintf(stderr, "jade metric: %s, %s: no pixel differs from its picture's corner, so there is no object "
+                            "to compare; pass --mask\n", paths[0], paths[1]);
+        goto done;
+    }
+    jd_metric r;
+    jd_metric_compute(img[0], img[1], mask, w[0], h[0], &r);
+    printf("{\"a\": ");
+    jd_json_string(stdout, paths[0]);
+    printf(", \"b\": ");
+    jd_json_string(stdout, paths[1]);
+    printf(", \"pixels\": %ld, \"rmse\": %.6f, \"psnr_db\": %.3f, \"ssim\": %.5f, "
            "\"best_scale\": %.5f, \"rmse_scaled\": %.6f, \"psnr_scaled_db\": %.3f, \"ssim_scaled\": %.5f, "
            "\"reference_peak\": %.5f}\n",
-           paths[0], paths[1], m.pixels, m.rmse, isfinite(m.psnr) ? m.psnr : 999.0, m.ssim, m.scale, m.rmse_scaled,
-           isfinite(m.psnr_scaled) ? m.psnr_scaled : 999.0, m.ssim_scaled, m.peak);
-    for (int k = 0; k < 2; k++) { free(img[k]); if (rgba[k]) stbi_image_free(rgba[k]); }
+           r.pixels, r.rmse, isfinite(r.psnr) ? r.psnr : 999.0, r.ssim, r.scale, r.rmse_scaled,
+           isfinite(r.psnr_scaled) ? r.psnr_scaled : 999.0, r.ssim_scaled, r.peak);
+    rc = fflush(stdout) == 0 && !ferror(stdout) ? 0 : 1;
+done:
+    for (int k = 0; k < 2; k++) { free(img[k]); stbi_image_free(rgba[k]); }
+    stbi_image_free(m);
     free(mask);
-    return 0;
+    return rc;
+}
+
+int jd_cmd_metric(int argc, char **argv)
+{
+    jd_options o;
+    jd_options_defaults(&o);
+    int rc = jd_options_command(
+        &o, JD_OPT_METRIC, "metric",
+        "Compares picture A with the reference B in linear light (PNGs in jade's display encoding, or\n"
+        "linear PFMs): RMSE, PSNR and SSIM over the object's pixels, and the same after the single\n"
+        "best global scale of A. The object is M's nonzero pixels, or where either picture differs\n"
+        "from its top-left (background) pixel; no such pixel is an error. Prints JSON. jade's PNGs clip\n"
+        "at linear 1.18 (its tone curve reaches white there): compare PFMs where brighter values matter.",
+        argc, argv);
+    if (rc >= 0) return rc;
+    if (o.num_positional != 2) {
+        fprintf(stderr, "jade metric: needs two pictures, A and the reference B\n");
+        return 2;
+    }
+    return metric(o.positional, o.mask_in);
 }

@@ -1,6 +1,8 @@
 #include "image_in.h"
 
+#include <ctype.h>
 #include <errno.h>
+#include <math.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,8 +11,6 @@
 #include <unistd.h>
 
 #include <stb_image.h>
-
-#define MAX_BYTES (64u << 20)
 
 /* Opened without blocking (a FIFO with no writer would hang the open), then
  * looked at. */
@@ -38,14 +38,14 @@ int jd_input_regular(const char *path, char *why, size_t cap)
     return 1;
 }
 
-unsigned char *jd_image_load(const char *path, int *w, int *h, int channels, char *why, size_t cap)
+unsigned char *jd_input_read(const char *path, size_t *len, char *why, size_t cap)
 {
     struct stat st;
     int fd = open_regular(path, &st, why, cap);
     if (fd < 0) return NULL;
-    if (st.st_size <= 0 || (unsigned long long)st.st_size > MAX_BYTES) {
+    if (st.st_size <= 0 || (unsigned long long)st.st_size > JD_IMAGE_MAX_BYTES) {
         snprintf(why, cap, "%lld bytes: not a picture jade reads (at most %u MiB)", (long long)st.st_size,
-                 MAX_BYTES >> 20);
+                 JD_IMAGE_MAX_BYTES >> 20);
         close(fd);
         return NULL;
     }
@@ -53,29 +53,156 @@ unsigned char *jd_image_load(const char *path, int *w, int *h, int channels, cha
     unsigned char *buf = malloc(n);
     while (buf && got < n) {
         ssize_t r = read(fd, buf + got, n - got);
+        if (r < 0 && errno == EINTR) continue;
         if (r <= 0) break;
         got += (size_t)r;
     }
     close(fd);
     if (!buf || got != n) {
-        snprintf(why, cap, buf ? "cannot read it" : "out of memory");
+        snprintf(why, cap, buf ? "cannot read it (it changed size while being read)" : "out of memory");
         free(buf);
         return NULL;
     }
+    *len = n;
+    return buf;
+}
+
+unsigned char *jd_image_decode(const unsigned char *buf, size_t n, int *w, int *h, int channels, char *why,
+                               size_t cap)
+{
+    /* PNG only: stb_image's other decoders are not safe on hostile input
+     * (fuzzing found a heap overflow in its 16-bit PNM path), and every
+     * picture jade writes or compares is a PNG or a PFM. */
+    static const unsigned char png_magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     int c = 0;
+    if (n < 8 || n > JD_IMAGE_MAX_BYTES || memcmp(buf, png_magic, 8) != 0) {
+        snprintf(why, cap, "not a PNG (jade reads PNG and PFM pictures)");
+        return NULL;
+    }
+    /* The size the header declares, read here: stb_image would refuse a
+     * huge one with a vaguer "unknown image type". */
+    if (n < 24 || memcmp(buf + 12, "IHDR", 4) != 0) {
+        snprintf(why, cap, "a PNG without its IHDR header");
+        return NULL;
+    }
+    unsigned long dw = (unsigned long)buf[16] << 24 | (unsigned long)buf[17] << 16 | buf[18] << 8 | buf[19];
+    unsigned long dh = (unsigned long)buf[20] << 24 | (unsigned long)buf[21] << 16 | buf[22] << 8 | buf[23];
+    if (dw == 0 || dh == 0 || dw > JD_IMAGE_MAX_SIDE || dh > JD_IMAGE_MAX_SIDE) {
+        snprintf(why, cap, "declares %lux%lu pixels, over the limit of %dx%d", dw, dh, JD_IMAGE_MAX_SIDE,
+                 JD_IMAGE_MAX_SIDE);
+        return NULL;
+    }
+    /* Every chunk must lie inside the file: stb_image grows its buffer to
+     * what a chunk declares before reading it (2 GiB for a 79-byte file). */
+    for (size_t at = 8; at < n;) {
+        if (n - at < 12) { snprintf(why, cap, "PNG truncated at byte %zu", at); return NULL; }
+        unsigned long len = (unsigned long)buf[at] << 24 | (unsigned long)buf[at + 1] << 16 | buf[at + 2] << 8 | buf[at + 3];
+        if (len > n - at - 12) {
+            snprintf(why, cap, "PNG chunk at byte %zu declares %lu bytes, past the end of the file", at, len);
+            return NULL;
+        }
+        if (!memcmp(buf + at + 4, "IEND", 4)) break;
+        at += 12 + len;
+    }
     if (!stbi_info_from_memory(buf, (int)n, w, h, &c)) {
-        snprintf(why, cap, "not a picture stb_image reads (PNG, BMP, ...)");
-        free(buf);
+        snprintf(why, cap, "not a PNG stb_image can read: %s", stbi_failure_reason());
         return NULL;
     }
     if (*w <= 0 || *h <= 0 || *w > JD_IMAGE_MAX_SIDE || *h > JD_IMAGE_MAX_SIDE) {
         snprintf(why, cap, "declares %dx%d pixels, over the limit of %dx%d", *w, *h, JD_IMAGE_MAX_SIDE,
                  JD_IMAGE_MAX_SIDE);
-        free(buf);
         return NULL;
     }
     unsigned char *px = stbi_load_from_memory(buf, (int)n, w, h, &c, channels);
-    free(buf);
     if (!px) snprintf(why, cap, "cannot decode it: %s", stbi_failure_reason());
+    return px;
+}
+
+unsigned char *jd_image_load(const char *path, int *w, int *h, int channels, char *why, size_t cap)
+{
+    size_t n;
+    unsigned char *buf = jd_input_read(path, &n, why, cap);
+    if (!buf) return NULL;
+    unsigned char *px = jd_image_decode(buf, n, w, h, channels, why, cap);
+    free(buf);
+    return px;
+}
+
+/* PFM header tokens: "PF", width, height, scale, each ended by white space;
+ * the last by exactly one white-space character, or CR LF as Windows tools
+ * write it. */
+static int pfm_token(const unsigned char *buf, size_t n, size_t *at, char *tok, size_t cap)
+{
+    while (*at < n && isspace(buf[*at])) (*at)++;
+    size_t k = 0;
+    while (*at < n && !isspace(buf[*at])) {
+        if (k + 1 >= cap) return 0;
+        tok[k++] = (char)buf[(*at)++];
+    }
+    tok[k] = 0;
+    return k > 0 && *at < n;
+}
+
+static int pfm_side(const char *tok, int *v)
+{
+    long x = 0;
+    for (const char *p = tok; *p; p++) {
+        if (*p < '0' || *p > '9') return 0;
+        x = x * 10 + (*p - '0');
+        if (x > JD_IMAGE_MAX_SIDE) return 0;
+    }
+    *v = (int)x;
+    return x > 0;
+}
+
+float *jd_pfm_decode(const unsigned char *buf, size_t n, int *w, int *h, char *why, size_t cap)
+{
+    char kind[8], ws[24], hs[24], ss[64];
+    size_t at = 0;
+    if (!pfm_token(buf, n, &at, kind, sizeof kind) || strcmp(kind, "PF") ||
+        !pfm_token(buf, n, &at, ws, sizeof ws) || !pfm_token(buf, n, &at, hs, sizeof hs) ||
+        !pfm_token(buf, n, &at, ss, sizeof ss)) {
+        snprintf(why, cap, "not a colour PFM (no \"PF width height scale\" header)");
+        return NULL;
+    }
+    if (!pfm_side(ws, w) || !pfm_side(hs, h)) {
+        snprintf(why, cap, "PFM declares %s x %s pixels: sides must be 1 to %d", ws, hs, JD_IMAGE_MAX_SIDE);
+        return NULL;
+    }
+    char *end;
+    double scale = strtod(ss, &end);
+    if (*end || !(scale < 0)) {
+        snprintf(why, cap, "PFM scale '%s': jade reads little-endian PFMs (a negative scale) only", ss);
+        return NULL;
+    }
+    if (buf[at] == '\r' && at + 1 < n && buf[at + 1] == '\n') at++;
+    at++; /* the one white-space character that ends the header */
+    size_t count = (size_t)*w * (size_t)*h * 3;
+    if (n - at != count * sizeof(float)) {
+        snprintf(why, cap, "PFM of %dx%d pixels should hold %zu bytes of data, has %zu", *w, *h,
+                 count * sizeof(float), n - at);
+        return NULL;
+    }
+    float *out = malloc(count * sizeof(float));
+    if (!out) { snprintf(why, cap, "out of memory"); return NULL; }
+    for (int y = 0; y < *h; y++) /* rows are stored bottom first; PNGs top first */
+        memcpy(out + (size_t)y * *w * 3, buf + at + (size_t)(*h - 1 - y) * *w * 3 * sizeof(float),
+               sizeof(float) * 3 * (size_t)*w);
+    for (size_t i = 0; i < count; i++)
+        if (!isfinite(out[i]) || out[i] < 0) {
+            snprintf(why, cap, "PFM pixel %zu has a negative or non-finite value", i / 3);
+            free(out);
+            return NULL;
+        }
+    return out;
+}
+
+float *jd_pfm_load(const char *path, int *w, int *h, char *why, size_t cap)
+{
+    size_t n;
+    unsigned char *buf = jd_input_read(path, &n, why, cap);
+    if (!buf) return NULL;
+    float *px = jd_pfm_decode(buf, n, w, h, why, cap);
+    free(buf);
     return px;
 }

@@ -7,11 +7,23 @@
 #include <stddef.h>
 
 enum { JD_IMAGE_MAX_SIDE = 4096 };
+#define JD_IMAGE_MAX_BYTES (64u << 20)
 
 /* 0 and a reason in `why` unless `path` is a regular file. */
 int jd_input_regular(const char *path, char *why, size_t cap);
+/* The whole of a regular file of at most JD_IMAGE_MAX_BYTES (free() it),
+ * or NULL and a reason. */
+unsigned char *jd_input_read(const char *path, size_t *n, char *why, size_t cap);
+
 /* stb_image's pixels (free with stbi_image_free) with `channels` per pixel,
  * or NULL and a reason. */
 unsigned char *jd_image_load(const char *path, int *w, int *h, int channels, char *why, size_t cap);
+unsigned char *jd_image_decode(const unsigned char *buf, size_t n, int *w, int *h, int channels, char *why,
+                               size_t cap);
+
+/* A little-endian colour PFM as w*h*3 floats, top row first (free() it);
+ * values must be finite and not negative. */
+float *jd_pfm_load(const char *path, int *w, int *h, char *why, size_t cap);
+float *jd_pfm_decode(const unsigned char *buf, size_t n, int *w, int *h, char *why, size_t cap);
 
 #endif

@@ -70,35 +70,3 @@ void jd_metric_compute(const float *a, const float *b, const unsigned char *mask
     m->ssim = ssim(a, b, mask, w, h, 1.0, m->peak);
     m->ssim_scaled = ssim(a, b, mask, w, h, m->scale, m->peak);
 }
-
-/* Portable float map: "PF", width, height, scale (negative: little-endian),
- * then rows from the bottom. */
-float *jd_read_pfm(const char *path, int *w, int *h, char *why, size_t cap)
-{
-    if (!jd_input_regular(path, why, cap)) return NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f) { snprintf(why, cap, "cannot open"); return NULL; }
-    char kind[3] = "";
-    double scale = 0;
-    if (fscanf(f, "%2s %d %d %lf", kind, w, h, &scale) != 4 || strcmp(kind, "PF") || *w <= 0 || *h <= 0 ||
-        *w > JD_IMAGE_MAX_SIDE || *h > JD_IMAGE_MAX_SIDE || scale >= 0 || fgetc(f) == EOF) {
-        snprintf(why, cap, "not a little-endian colour PFM");
-        fclose(f);
-        return NULL;
-    }
-    size_t n = (size_t)*w * *h * 3;
-    float *raw = malloc(n * sizeof(float)), *out = malloc(n * sizeof(float));
-    if (!raw || !out || fread(raw, sizeof(float), n, f) != n) {
-        snprintf(why, cap, "truncated PFM");
-        free(raw); free(out); fclose(f);
-        return NULL;
-    }
-    fclose(f);
-    for (int y = 0; y < *h; y++) /* top-down, as PNGs */
-        memcpy(out + (size_t)y * *w * 3, raw + (size_t)(*h - 1 - y) * *w * 3, sizeof(float) * 3 * *w);
-    free(raw);
-    for (size_t i = 0; i < n; i++)
-        if (!isfinite(out[i]) || out[i] < 0) { snprintf(why, cap, "negative or non-finite value"); free(out); return NULL; }
-    return out;
-}
-

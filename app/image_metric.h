@@ -16,9 +16,4 @@ typedef struct jd_metric {
 /* A and B: w*h*3 linear floats; mask: w*h bytes, nonzero = compared (NULL: all). */
 void jd_metric_compute(const float *a, const float *b, const unsigned char *mask, int w, int h, jd_metric *out);
 
-/* A little-endian colour PFM as w*h*3 linear floats, top row first
- * (malloc'd); NULL and a reason for anything else, negative or
- * non-finite values included. */
-float *jd_read_pfm(const char *path, int *w, int *h, char *why, size_t cap);
-
 #endif

@@ -3,12 +3,13 @@
 #include "profile.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-typedef enum { T_STR, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION, T_ANTIALIAS } opt_type;
+typedef enum { T_STR, T_PATH, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION, T_ANTIALIAS } opt_type;
 
 typedef struct opt {
     const char *name;
@@ -29,21 +30,22 @@ typedef struct opt {
 #define V JD_OPT_VIEW
 #define K JD_OPT_KIOSK
 static const opt table[] = {
-    {"--mesh", T_STR, OFF(mesh), 0, 0, S, "FILE.drc   Draco mesh [the default asset]"},
-    {"--out", T_STR, OFF(out), 0, 0, RO | JD_OPT_REFERENCE, "FILE.png   output image [jade.png]"},
-    {"--sheet", T_STR, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual | full side by side, labelled"},
-    {"--sheet-reference", T_STR, OFF(sheet_ref), 0, 0, RO, "FILE.png   with --sheet: a reference picture as the first panel"},
-    {"--pfm", T_STR, OFF(pfm), 0, 0, JD_OPT_REFERENCE, "FILE.pfm   also write the linear picture (before the tone curve)"},
-    {"--mask", T_STR, OFF(mask_out), 0, 0, JD_OPT_REFERENCE, "FILE.png   also write the object's pixels (255) for jade metric --mask"},
+    {"--mesh", T_PATH, OFF(mesh), 0, 0, S, "FILE.drc   Draco mesh [the default asset]"},
+    {"--out", T_PATH, OFF(out), 0, 0, RO | JD_OPT_REFERENCE, "FILE.png   output image [jade.png]"},
+    {"--sheet", T_PATH, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual | full side by side, labelled"},
+    {"--sheet-reference", T_PATH, OFF(sheet_ref), 0, 0, RO, "FILE.png   with --sheet: a reference picture as the first panel"},
+    {"--pfm", T_PATH, OFF(pfm), 0, 0, JD_OPT_REFERENCE, "FILE.pfm   also write the linear picture (before the tone curve)"},
+    {"--mask", T_PATH, OFF(mask_out), 0, 0, JD_OPT_REFERENCE, "FILE.png   also write the object's pixels (255) for jade metric --mask"},
     {"--samples", T_INT, OFF(samples), 100, 4000000, JD_OPT_REFERENCE, "N          irradiance samples [one per (0.3 mm)^2, 20,000 to 400,000]"},
     {"--error", T_FLOAT, OFF(ref_error), 0.001, 10, JD_OPT_REFERENCE, "X          octree error bound: node area / distance^2 [0.01]"},
     {"--window-mm", T_FLOAT, OFF(window_mm), 0.001, 1000, JD_OPT_REFERENCE, "X          near-field window, integrated exactly [2.5 mm or 3 sample spacings]"},
     {"--threads", T_INT, OFF(threads), 1, 256, JD_OPT_REFERENCE, "N          [every core]"},
     {"--seed", T_INT, OFF(seed), 0, 1000000000, JD_OPT_REFERENCE, "N          sample placement [0]"},
     {"--quiet", T_FLAG, OFF(quiet), 0, 0, JD_OPT_REFERENCE, "           no progress bar"},
-    {"--screenshot", T_STR, OFF(screenshot), 0, 0, V, "FILE.png   write the last frame (with --frames)"},
+    {"--mask", T_PATH, OFF(mask_in), 0, 0, JD_OPT_METRIC, "FILE.png   the object's pixels (nonzero) [where either picture differs from its corner]"},
+    {"--screenshot", T_PATH, OFF(screenshot), 0, 0, V, "FILE.png   write the last frame (with --frames)"},
     {"--platform", T_STR, OFF(platform), 0, 0, K, "P          drm [default], x11 or headless"},
-    {"--drm-device", T_STR, OFF(drm_device), 0, 0, K, "PATH       [the first KMS-capable /dev/dri/card*]"},
+    {"--drm-device", T_PATH, OFF(drm_device), 0, 0, K, "PATH       [the first KMS-capable /dev/dri/card*]"},
     {"--connector", T_STR, OFF(connector), 0, 0, K, "NAME       e.g. HDMI-A-1 [the first connected]"},
     {"--display-mode", T_STR, OFF(display_mode), 0, 0, K, "WxH[@Hz]   [the preferred mode, else the largest]"},
     {"--atomic", T_FLAG, OFF(atomic), 0, 0, K, "           atomic modesetting (where the driver has it)"},
@@ -100,7 +102,7 @@ void jd_options_defaults(jd_options *o)
 
 void jd_options_help(int command, const char *cmdname, const char *summary)
 {
-    printf("usage: jade %s [options]\n%s\n\noptions:\n", cmdname, summary);
+    printf("usage: jade %s %s[options]\n%s\n\noptions:\n", cmdname, (command & JD_OPT_METRIC) ? "A B " : "", summary);
     for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
         if (table[i].commands & command) printf("  %-20s %s\n", table[i].name, table[i].help);
     printf("  %-20s %s\n", "--help", "           this text");
@@ -121,29 +123,135 @@ static int parse_double(const char *s, double lo, double hi, double *out)
     return 1;
 }
 
+/* A whole decimal number from `*s` up to a character in `stop` (or the
+ * end): no sign games, no wraparound (4294967312 is not 16). */
+static int parse_whole(const char **s, const char *stop, long lo, long hi, long *out)
+{
+    const char *p = *s;
+    long v = 0;
+    if (*p < '0' || *p > '9') return 0;
+    for (; *p >= '0' && *p <= '9'; p++) {
+        if (v > (hi - (*p - '0')) / 10) return 0; /* past hi: stop before overflowing */
+        v = v * 10 + (*p - '0');
+    }
+    if (*p && !strchr(stop, *p)) return 0;
+    if (v < lo) return 0;
+    *s = p;
+    *out = v;
+    return 1;
+}
+
+/* Edit distance, for "did you mean": option names are short. */
+static int distance(const char *a, const char *b)
+{
+    int row[64], la = (int)strlen(a), lb = (int)strlen(b);
+    if (la > 63 || lb > 63) return 99;
+    for (int j = 0; j <= lb; j++) row[j] = j;
+    for (int i = 1; i <= la; i++) {
+        int diag = row[0];
+        row[0] = i;
+        for (int j = 1; j <= lb; j++) {
+            int up = row[j], best = diag + (a[i - 1] != b[j - 1]);
+            if (up + 1 < best) best = up + 1;
+            if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
+            diag = up;
+            row[j] = best;
+        }
+    }
+    return row[lb];
+}
+
+static const opt *find_option(int command, const char *name, size_t len)
+{
+    for (size_t k = 0; k < sizeof table / sizeof table[0]; k++)
+        if ((table[k].commands & command) && strlen(table[k].name) == len && !strncmp(name, table[k].name, len))
+            return &table[k];
+    return NULL;
+}
+
+static void unknown_option(int command, const char *cmd, const char *a, size_t len)
+{
+    const char *best = NULL;
+    int bd = 4;
+    char name[64];
+    snprintf(name, sizeof name, "%.*s", (int)(len < 63 ? len : 63), a);
+    for (size_t k = 0; k < sizeof table / sizeof table[0]; k++) {
+        if (!(table[k].commands & command)) continue;
+        int d = distance(name, table[k].name);
+        if (d < bd) { bd = d; best = table[k].name; }
+    }
+    if (best)
+        fprintf(stderr, "jade %s: unknown option '%.*s'; did you mean %s? (see jade %s --help)\n", cmd, (int)len, a,
+                best, cmd);
+    else
+        fprintf(stderr, "jade %s: unknown option '%.*s' (see jade %s --help)\n", cmd, (int)len, a, cmd);
+}
+
+/* A path the system could not open as given is refused here, by name,
+ * rather than cut to fit a buffer (a cut path may name another file). */
+static int path_ok(const char *cmd, const char *what, const char *v)
+{
+    if (!*v) {
+        fprintf(stderr, "jade %s: %s: empty path\n", cmd, what);
+        return 0;
+    }
+    if (strlen(v) >= PATH_MAX) {
+        fprintf(stderr, "jade %s: %s: a path of %zu bytes, longer than the system allows (%d)\n", cmd, what,
+                strlen(v), PATH_MAX - 1);
+        return 0;
+    }
+    return 1;
+}
+
 int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char **argv, int first)
 {
+    int options_done = 0;
     for (int i = first; i < argc; i++) {
         const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) return -1;
-        const opt *op = NULL;
-        for (size_t k = 0; k < sizeof table / sizeof table[0]; k++)
-            if ((table[k].commands & command) && !strcmp(a, table[k].name)) op = &table[k];
+        if (!options_done && (!strcmp(a, "--help") || !strcmp(a, "-h"))) return -1;
+        if ((options_done || a[0] != '-' || !a[1]) && (command & JD_OPT_METRIC)) {
+            /* metric's two pictures */
+            if (o->num_positional >= 2) {
+                fprintf(stderr, "jade %s: one picture too many: '%s'\n", cmd, a);
+                return 0;
+            }
+            if (!path_ok(cmd, "picture", a)) return 0;
+            o->positional[o->num_positional++] = a;
+            continue;
+        }
+        if (!strcmp(a, "--") && (command & JD_OPT_METRIC)) { options_done = 1; continue; }
+        /* --name value, or --name=value */
+        const char *eq = strncmp(a, "--", 2) ? NULL : strchr(a, '=');
+        size_t len = eq ? (size_t)(eq - a) : strlen(a);
+        const opt *op = find_option(command, a, len);
         if (!op) {
-            fprintf(stderr, "jade %s: unknown option '%s' (see jade %s --help)\n", cmd, a, cmd);
+            unknown_option(command, cmd, a, len);
             return 0;
         }
         char *field = (char *)o + op->offset;
-        if (op->type == T_FLAG) { *(int *)field = 1; continue; }
-        if (i + 1 >= argc) {
+        if (op->type == T_FLAG) {
+            if (eq) { fprintf(stderr, "jade %s: %s takes no value\n", cmd, op->name); return 0; }
+            *(int *)field = 1;
+            continue;
+        }
+        const char *v;
+        if (eq) {
+            v = eq + 1;
+        } else if (i + 1 < argc) {
+            v = argv[++i];
+        } else {
             fprintf(stderr, "jade %s: %s needs a value (see jade %s --help)\n", cmd, a, cmd);
             return 0;
         }
-        const char *v = argv[++i];
+        a = op->name;
         double d;
         switch (op->type) {
         case T_STR:
             if (!*v) { fprintf(stderr, "jade %s: %s: empty value\n", cmd, a); return 0; }
+            *(const char **)field = v;
+            break;
+        case T_PATH:
+            if (!path_ok(cmd, a, v)) return 0;
             *(const char **)field = v;
             break;
         case T_INT:
@@ -162,29 +270,37 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
             if (op->offset == OFF(scene.eta)) o->has_eta = 1;
             break;
         case T_FLOAT3: {
-            char buf[128];
-            snprintf(buf, sizeof buf, "%s", v);
-            float *f3 = (float *)field;
-            char *save = NULL, *tok = strtok_r(buf, ",", &save);
-            int n = 0;
-            for (; tok && n < 3; tok = strtok_r(NULL, ",", &save), n++)
-                if (!parse_double(tok, op->lo, op->hi, &d)) break; else f3[n] = (float)d;
-            if (n != 3 || tok) {
+            /* Three numbers split in place: any length, nothing cut. */
+            float *f3 = (float *)field, got[3];
+            const char *p = v;
+            int n = 0, ok = 1;
+            while (ok && n < 3) {
+                char *end;
+                errno = 0;
+                double x = strtod(p, &end);
+                ok = end != p && !errno && isfinite(x) && x >= op->lo && x <= op->hi &&
+                     (*end == ',' ? n < 2 : *end == 0 && n == 2);
+                if (ok) { got[n++] = (float)x; p = *end ? end + 1 : end; }
+            }
+            if (!ok || n != 3) {
                 fprintf(stderr, "jade %s: %s: expected three numbers R,G,B from %g to %g, got '%s'\n", cmd, a, op->lo, op->hi, v);
                 return 0;
             }
+            memcpy(f3, got, sizeof got);
             if (op->offset == OFF(scene.sigma_s)) o->has_sigma_s = 1; else o->has_sigma_a = 1;
             break;
         }
         case T_SIZE: {
-            int w = 0, h = 0;
-            char extra;
-            if (sscanf(v, "%dx%d%c", &w, &h, &extra) != 2 || w < op->lo || h < op->lo || w > op->hi || h > op->hi) {
+            long w = 0, h = 0;
+            const char *p = v;
+            int ok = parse_whole(&p, "x", (long)op->lo, (long)op->hi, &w) && *p == 'x';
+            if (ok) { p++; ok = parse_whole(&p, "", (long)op->lo, (long)op->hi, &h) && !*p; }
+            if (!ok) {
                 fprintf(stderr, "jade %s: %s: expected WxH from 16x16 to 4096x4096, got '%s'\n", cmd, a, v);
                 return 0;
             }
-            o->width = w;
-            o->height = h;
+            o->width = (int)w;
+            o->height = (int)h;
             break;
         }
         case T_MODE: {

@@ -18,6 +18,9 @@ typedef struct jd_options {
     const char *pfm;          /* reference: linear image */
     const char *mask_out;     /* reference: object mask */
     const char *sheet_ref;    /* render --sheet: a reference picture shown first */
+    const char *mask_in;      /* metric: the object's pixels */
+    const char *positional[2]; /* metric: the two pictures */
+    int num_positional;
     int samples, threads, seed, quiet;
     float ref_error, window_mm;
     const char *drm_device, *connector, *display_mode;
@@ -33,7 +36,7 @@ typedef struct jd_options {
     int has_sigma_s, has_sigma_a, has_eta;
 } jd_options;
 
-enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD_OPT_KIOSK = 16, JD_OPT_REFERENCE = 32 };
+enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD_OPT_KIOSK = 16, JD_OPT_REFERENCE = 32, JD_OPT_METRIC = 64 };
 
 void jd_options_defaults(jd_options *o);
 /* Parses argv[first..argc); prints a one-line error and returns 0 on bad input.

@@ -7,6 +7,7 @@
 
 #include "check.h"
 #include "display_curve.h"
+#include "image_in.h"
 #include "image_metric.h"
 
 enum { W = 64, H = 48 };
@@ -51,14 +52,29 @@ int main(void)
     fclose(f);
     int w = 0, h = 0;
     char why[120] = "";
-    float *img = jd_read_pfm(path, &w, &h, why, sizeof why);
+    float *img = jd_pfm_load(path, &w, &h, why, sizeof why);
     CHECK(img && w == 2 && h == 2 && img[0] == 2 && img[3] == 3 && img[9] == 1, "PFM read top-down: %s", why);
     free(img);
     f = fopen(path, "wb");
     fprintf(f, "PF\n2 2\n-1.0\n");
     fwrite(rows, sizeof(float), 5, f);
     fclose(f);
-    CHECK(!jd_read_pfm(path, &w, &h, why, sizeof why) && strstr(why, "truncated"), "truncated PFM refused: %s", why);
+    CHECK(!jd_pfm_load(path, &w, &h, why, sizeof why) && strstr(why, "should hold 48 bytes"), "truncated PFM refused: %s", why);
+    /* Windows tools end header lines with CR LF: one byte more, not one off. */
+    f = fopen(path, "wb");
+    fprintf(f, "PF\r\n2 2\r\n-1.0\r\n");
+    fwrite(rows, sizeof(float), 12, f);
+    fclose(f);
+    img = jd_pfm_load(path, &w, &h, why, sizeof why);
+    CHECK(img && img[0] == 2 && img[3] == 3 && img[9] == 1, "PFM with CR LF read exactly: %s", why);
+    free(img);
+    /* 2^32 + 2 must not wrap round to 2. */
+    f = fopen(path, "wb");
+    fprintf(f, "PF\n4294967298 2\n-1.0\n");
+    fwrite(rows, sizeof(float), 12, f);
+    fclose(f);
+    CHECK(!jd_pfm_load(path, &w, &h, why, sizeof why) && strstr(why, "4294967298"), "PFM width past 2^32 refused: %s", why);
     unlink(path);
+    CHECK(!jd_pfm_decode((const unsigned char *)"PF", 2, &w, &h, why, sizeof why), "a bare PF refused: %s", why);
     return jd_check_summary("metric");
 }
