@@ -1,0 +1,68 @@
+#!/bin/sh
+# Writes the fuzz targets' seed corpora (tests/fuzz/corpus/<target>), all
+# from jade's own tiny shapes: a tetrahedron encoded by Debian's
+# draco_encoder both ways, with and without metadata, and small pictures.
+# Run again after a format change; the results are committed.
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+c=$here/corpus
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+mkdir -p "$c/fuzz_draco_header" "$c/fuzz_metadata" "$c/fuzz_mesh_load" "$c/fuzz_image" "$c/fuzz_options"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1/1 3/3/1 2/2/1\nf 1/1/1 2/2/1 4/3/1\nf 1/1/1 4/3/1 3/2/1\nf 2/2/1 3/3/1 4/1/1\n' > "$tmp/tet.obj"
+draco_encoder -i "$tmp/tet.obj" -o "$tmp/seq.drc" -cl 0 >/dev/null
+draco_encoder -i "$tmp/tet.obj" -o "$tmp/eb.drc" -cl 7 >/dev/null
+draco_encoder -i "$tmp/tet.obj" -o "$tmp/raw.drc" -cl 0 -qp 0 -qt 0 -qn 0 >/dev/null
+python3 - "$tmp" "$c" <<'PY'
+import sys, os
+tmp, c = sys.argv[1], sys.argv[2]
+def varint(v):
+    out = b''
+    while True:
+        b = v & 0x7f; v >>= 7
+        if v: out += bytes([b | 0x80])
+        else: return out + bytes([b])
+def nested(depth):
+    m = varint(1) + b'\x04name' + varint(3) + b'tet' + varint(0)
+    for _ in range(depth):
+        m = varint(0) + varint(1) + b'\x03sub' + m
+    return varint(1) + varint(0) + varint(0) + varint(0) + m   # one (empty) attribute metadata, then the file's
+meshes = {n: open(f'{tmp}/{n}.drc', 'rb').read() for n in ('seq', 'eb', 'raw')}
+for n, b in meshes.items():
+    for d in ('fuzz_draco_header', 'fuzz_mesh_load'):
+        open(f'{c}/{d}/{n}.drc', 'wb').write(b)
+    meta = bytearray(b[:11]); meta[10] |= 0x80
+    for depth in (0, 3):
+        for d in ('fuzz_draco_header', 'fuzz_mesh_load'):
+            open(f'{c}/{d}/{n}-meta{depth}.drc', 'wb').write(bytes(meta) + nested(depth) + b[11:])
+        open(f'{c}/fuzz_metadata/{n}-meta{depth}', 'wb').write(nested(depth) + b[11:])
+PY
+# Pictures: a 2x2 PFM with LF and with CR LF ends, a PPM, a BMP and a PNG
+# (the PNG written by python's zlib, no image library needed).
+python3 - "$c/fuzz_image" <<'PY'
+import sys, struct, zlib
+d = sys.argv[1]
+px = struct.pack('<12f', 0, 0, 0, 1, 1, 1, 0.5, 0.25, 0.125, 2, 2, 2)
+open(f'{d}/lf.pfm', 'wb').write(b'PF\n2 2\n-1.0\n' + px)
+open(f'{d}/crlf.pfm', 'wb').write(b'PF\r\n2 2\r\n-1.0\r\n' + px)
+open(f'{d}/tiny.ppm', 'wb').write(b'P6\n2 2\n255\n' + bytes(range(12)))
+row = b'\x00\x00\xff\xff\xff\x00\x00'
+bmp_px = (b'\x00\x00\xff\xff\xff\xff' + b'\x00\x00') * 2
+open(f'{d}/tiny.bmp', 'wb').write(b'BM' + struct.pack('<IHHI', 54 + len(bmp_px), 0, 0, 54) +
+                                  struct.pack('<IiiHHIIiiII', 40, 2, 2, 1, 24, 0, len(bmp_px), 2835, 2835, 0, 0) + bmp_px)
+def chunk(t, b): return struct.pack('>I', len(b)) + t + b + struct.pack('>I', zlib.crc32(t + b) & 0xffffffff)
+raw = b''.join(b'\x00' + bytes([x * 60, y * 60, 90, 255]) * 1 + bytes([200, 10, 10, 255]) for y in range(2) for x in range(1))
+png = b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', 2, 2, 8, 6, 0, 0, 0)) + \
+      chunk(b'IDAT', zlib.compress(raw)) + chunk(b'IEND', b'')
+open(f'{d}/tiny.png', 'wb').write(png)
+PY
+# Argument lists: the first byte picks the command (0 render, 1 bench,
+# 2 info, 3 view, 4 kiosk, 5 reference, 6 metric), then NUL-separated words.
+o=$c/fuzz_options
+printf '\000--size\000640x480\000--mode\000dual\000--sigma-s=1,2,3' > "$o/render"
+printf '\001--mode=all\000--frames\00010\000--material\000skin1' > "$o/bench"
+printf '\002--profile\000mali400' > "$o/info"
+printf '\004--platform\000headless\000--rotate\00090\000--atomic' > "$o/kiosk"
+printf '\005--samples\00020000\000--error\0000.02\000--quiet' > "$o/reference"
+printf '\006a.png\000b.png\000--mask\000m.png' > "$o/metric"
+echo "seeds written under $c"
