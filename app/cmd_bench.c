@@ -6,6 +6,7 @@
 
 #include "alloc_count.h"
 #include "commands.h"
+#include "health.h"
 #include "json_out.h"
 
 static int cmp_double(const void *a, const void *b)
@@ -39,12 +40,30 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
     }
     jd_renderer_finish(s->renderer);
     jd_alloc_count_start();
+    static double t_log;
+    if (!t_log) t_log = jd_now_ms();
     for (int i = 0; i < o->frames; i++) {
         sc.light_azimuth = o->scene.light_azimuth + 360.0f * (float)i / 120.0f;
+        if (o->cycle_materials) { /* the diffusion refit and every uniform path, in the loop */
+            const jd_material *m = &jd_materials[(i / 10) % jd_material_count];
+            memcpy(sc.sigma_s, m->sigma_s, sizeof sc.sigma_s);
+            memcpy(sc.sigma_a, m->sigma_a, sizeof sc.sigma_a);
+            sc.eta = m->eta;
+        }
         double t0 = jd_now_ms();
         if (jd_renderer_frame(s->renderer, &sc, NULL, &err)) { jd_alloc_count_stop(); goto fail; }
         jd_renderer_finish(s->renderer);
-        times[i] = jd_now_ms() - t0;
+        double t1 = jd_now_ms();
+        times[i] = t1 - t0;
+        if (o->log_every > 0 && t1 - t_log >= o->log_every * 1000.0) {
+            jd_health h;
+            jd_health_sample(&h);
+            fprintf(stderr, "bench: at %.1f s, %s frame %d of %d", (t1 - s->t_start_ms) / 1000.0, jd_mode_name(mode),
+                    i + 1, o->frames);
+            jd_health_print(stderr, &h);
+            fprintf(stderr, "\n");
+            t_log = t1;
+        }
     }
     unsigned long allocs = jd_alloc_count_stop();
     /* Per-pass times come from a separate run with glFinish after each pass,
@@ -125,6 +144,20 @@ int jd_cmd_bench(int argc, char **argv)
            s.load.decode_ms, s.load.file_bytes);
     printf("  \"arena_budget_bytes\": %zu, \"arena_peak_bytes\": %zu, \"render_target_bytes\": %zu,\n", s.arena.size,
            s.arena.peak, jd_renderer_target_bytes(s.renderer));
+    if (o.cycle_materials) {
+        /* A soak: every mode's programs and targets made once before the
+         * first health line, so later growth is growth, not set-up. */
+        for (int m = 0; m < JD_MODE_COUNT; m++) {
+            jd_scene w = o.scene;
+            w.mode = (jd_mode)m;
+            if (jd_renderer_frame(s.renderer, &w, NULL, &err)) {
+                fprintf(stderr, "jade bench: %s\n", err.msg);
+                jd_session_close(&s);
+                return 1;
+            }
+        }
+        jd_renderer_finish(s.renderer);
+    }
     printf("  \"modes\": {\n");
     int ok = 1, n = 0;
     for (int m = 0; m < JD_MODE_COUNT && ok; m++) {

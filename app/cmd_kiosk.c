@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "health.h"
 
 #define KIOSK_SAMPLES 4096 /* the last frames kept for the statistics */
 
@@ -12,6 +13,24 @@ static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return x < y ? -1 : x > y;
+}
+
+/* One line per --log-every: the frames since the last line, their median
+ * and p95, and the process's health. */
+static void health_line(jd_session *s, const double *times, double *sorted, long frames, long recent, double t_ms)
+{
+    int n = recent < KIOSK_SAMPLES ? (int)recent : KIOSK_SAMPLES;
+    if (n <= 0) return;
+    for (int i = 0; i < n; i++) sorted[i] = times[(frames - 1 - i) % KIOSK_SAMPLES];
+    qsort(sorted, (size_t)n, sizeof(double), cmp_double);
+    jd_present_stats ps;
+    jd_platform_present_stats(s->platform, &ps);
+    jd_health h;
+    jd_health_sample(&h);
+    printf("kiosk: at %.1f s, %ld frames, last %ld: median %.2f ms, p95 %.2f ms, missed vblanks %u", t_ms / 1000.0,
+           frames, recent, sorted[n / 2], sorted[(n * 95) / 100], ps.missed_vblanks);
+    jd_health_print(stdout, &h);
+    printf("\n");
 }
 
 int jd_cmd_kiosk(int argc, char **argv)
@@ -34,8 +53,8 @@ int jd_cmd_kiosk(int argc, char **argv)
     if (!times || !sorted) { fprintf(stderr, "jade kiosk: %s\n", err.msg); jd_session_close(&s); return 1; }
     fprintf(stderr, "%s\n%s\n", jd_platform_describe(s.platform), jd_antialias_describe(s.renderer));
     jd_scene sc = o.scene;
-    double t_start = jd_now_ms(), t_prev = t_start;
-    long frames = 0;
+    double t_start = jd_now_ms(), t_prev = t_start, t_log = t_start;
+    long frames = 0, frames_logged = 0;
     rc = 0;
     while (!o.frames || frames < o.frames) {
         jd_event ev;
@@ -55,6 +74,11 @@ int jd_cmd_kiosk(int argc, char **argv)
         times[frames % KIOSK_SAMPLES] = now - t_prev;
         t_prev = now;
         frames++;
+        if (o.log_every > 0 && now - t_log >= o.log_every * 1000.0) {
+            health_line(&s, times, sorted, frames, frames - frames_logged, now - t_start);
+            frames_logged = frames;
+            t_log = now;
+        }
     }
     if (frames > 0) {
         int n = frames < KIOSK_SAMPLES ? (int)frames : KIOSK_SAMPLES;

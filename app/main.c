@@ -31,6 +31,9 @@ int main(int argc, char **argv)
      * the pages back and faults them in again. A kiosk keeps them. */
     mallopt(M_TRIM_THRESHOLD, 256 << 20);
     mallopt(M_MMAP_THRESHOLD, 64 << 20);
+    /* Lines reach a pipe or the journal as they are printed, not when a
+     * 4 KiB buffer fills or the process ends. */
+    setvbuf(stdout, NULL, _IOLBF, 0);
     if (argc < 2) {
         fprintf(stderr, "jade: no command given (see jade --help)\n");
         return 2;

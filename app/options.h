@@ -30,6 +30,8 @@ typedef struct jd_options {
     int frames;
     int budget_mb;
     int json;
+    float log_every;     /* kiosk, bench: seconds between health lines, 0 = none */
+    int cycle_materials; /* bench */
     jd_load_desc load;
     jd_renderer_desc rdesc;
     jd_scene scene;

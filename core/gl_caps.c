@@ -63,3 +63,20 @@ jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)
     while (glGetError() != GL_NO_ERROR) {}
     return JD_OK;
 }
+
+void jd_gl_probe_names(jd_gl_names *out)
+{
+    GLuint n;
+    glGenTextures(1, &n);
+    glDeleteTextures(1, &n);
+    out->texture = n;
+    glGenBuffers(1, &n);
+    glDeleteBuffers(1, &n);
+    out->buffer = n;
+    glGenFramebuffers(1, &n);
+    glDeleteFramebuffers(1, &n);
+    out->framebuffer = n;
+    glGenRenderbuffers(1, &n);
+    glDeleteRenderbuffers(1, &n);
+    out->renderbuffer = n;
+}

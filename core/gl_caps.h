@@ -24,4 +24,12 @@ typedef struct jd_gl_caps {
 jd_result jd_gl_caps_query(jd_gl_caps *caps, jd_error *err);
 int jd_gl_has_extension(const char *name);
 
+/* The names the current context would give a new texture, buffer,
+ * framebuffer and renderbuffer (each generated and deleted at once). GL
+ * hands out the lowest free name or one past the highest in use, so these
+ * stay flat over a long run unless GL objects leak: a leak detector that
+ * needs no driver support. Costs four create/delete pairs; call it rarely. */
+typedef struct jd_gl_names { unsigned texture, buffer, framebuffer, renderbuffer; } jd_gl_names;
+void jd_gl_probe_names(jd_gl_names *out);
+
 #endif
