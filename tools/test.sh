@@ -17,3 +17,19 @@ echo "== tests (ASan + UBSan build)"
 # be about it, not jade. Everything else ASan and UBSan check stays on.
 (cd build-asan && ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest -j"$jobs" --output-on-failure)
+# The fuzz targets, briefly, over their seed corpora and what earlier runs
+# found (tools/fuzz.sh runs them for hours). Needs clang and libFuzzer.
+fuzz_probe=$(mktemp)
+if command -v clang >/dev/null && command -v clang++ >/dev/null &&
+   echo 'int LLVMFuzzerTestOneInput(const char *d, unsigned long n) { return d && n; }' |
+   clang -fsanitize=fuzzer -x c - -o "$fuzz_probe" 2>/dev/null; then
+    rm -f "$fuzz_probe"
+    echo "== fuzz smoke (libFuzzer, ${JADE_FUZZ_SECONDS:-10} s per target)"
+    CC=clang CXX=clang++ cmake -S . -B build-fuzz -DJADE_FUZZ=ON -DJADE_TESTS=OFF \
+        -DJADE_FUZZ_SECONDS="${JADE_FUZZ_SECONDS:-10}" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+    cmake --build build-fuzz -j"$jobs" >/dev/null
+    (cd build-fuzz && ctest -j"$jobs" -L fuzz --output-on-failure)
+else
+    rm -f "$fuzz_probe"
+    echo "== fuzz smoke skipped: clang with libFuzzer is not installed (Debian: clang libclang-rt-14-dev)"
+fi
