@@ -5,8 +5,70 @@
 #include "options.h"
 #include "gl.h"
 #include "gl_caps.h"
+#include "gl_program.h"
 #include "platform.h"
 #include "profile.h"
+
+/* info --compile: every program the renderer builds for this device (or
+ * profile), one row each, the driver's messages in between on stderr. */
+typedef struct compile_log {
+    int count, failed;
+    char label[160];
+} compile_log;
+
+static void tag(char *out, size_t cap, const char *defines, const char *name, const char *shown)
+{
+    const char *p = defines ? strstr(defines, name) : NULL;
+    if (p && p[strlen(name)] == ' ' && p[strlen(name) + 1] != '0') {
+        size_t n = strlen(out);
+        snprintf(out + n, cap - n, "%s%s", out[n - 1] == '[' ? "" : ",", shown);
+    }
+}
+
+static void on_program(void *user, const char *vs, const char *fs, const char *defines, int result, const char *msg)
+{
+    compile_log *l = user;
+    if (result < 0) {
+        const char *v = strrchr(vs, '/'), *f = strrchr(fs, '/');
+        snprintf(l->label, sizeof l->label, "%s+%s[", v ? v + 1 : vs, f ? f + 1 : fs);
+        static const char *const tags[][2] = {
+            {"JD_TRANSLUCENT", "translucent"}, {"JD_SPREAD", "spread"}, {"JD_FULL", "full"},
+            {"JD_A0_ONLY", "a0"}, {"JD_WIDE_ONLY", "wide"}, {"JD_VERTEX_DIFFUSION", "vertex-diffusion"},
+            {"JD_VERTEX_THICKNESS", "vertex-thickness"}, {"JD_FIRST", "first"}, {"JD_COMBINE", "combine"},
+            {"JD_PACK_HIGHP", "highp"}};
+        for (size_t i = 0; i < sizeof tags / sizeof tags[0]; i++) tag(l->label, sizeof l->label, defines, tags[i][0], tags[i][1]);
+        size_t n = strlen(l->label);
+        if (l->label[n - 1] == '[') l->label[n - 1] = 0;
+        else snprintf(l->label + n, sizeof l->label - n, "]");
+        fprintf(stderr, "jade: compiling program %d: %s\n", l->count, l->label);
+        return;
+    }
+    printf("program %2d  %-58s %s%s\n", l->count, l->label, result ? "FAILED: " : "compiled and linked",
+           result ? msg : "");
+    if (result) l->failed++;
+    l->count++;
+}
+
+static void on_driver_message(void *user, const char *kind, const char *msg)
+{
+    (void)user;
+    fprintf(stderr, "jade: GL driver %s: %s\n", kind, msg);
+}
+
+static int compile_all(jd_options *o)
+{
+    compile_log l = {0};
+    jd_program_observe(on_program, &l);
+    o->platform = "headless";
+    o->width = o->height = 64;
+    jd_session s;
+    int ok = jd_session_open_with(&s, o, "info", on_driver_message, NULL);
+    jd_program_observe(NULL, NULL);
+    if (ok) printf("jade info --compile: %d programs built for %s (%s), none failed\n", l.count, s.caps.renderer,
+                   o->profile ? o->profile : "no profile");
+    jd_session_close(&s);
+    return ok && !l.failed ? 0 : 1;
+}
 
 int jd_cmd_info(int argc, char **argv)
 {
@@ -21,6 +83,7 @@ int jd_cmd_info(int argc, char **argv)
                        jd_profiles[k].summary);
     int rc = jd_options_command(&o, JD_OPT_INFO, "info", summary, argc, argv);
     if (rc >= 0) return rc;
+    if (o.compile_only) return compile_all(&o);
     const jd_profile *prof = o.profile ? jd_profile_find(o.profile) : NULL;
     jd_error err = {0};
     jd_platform *p = NULL;
@@ -51,6 +114,12 @@ int jd_cmd_info(int argc, char **argv)
     printf("fragment highp     %s (precision %d bits, range 2^%d)\n", c.frag_highp_precision >= 23 ? "yes" : "no",
            c.frag_highp_precision, c.frag_highp_range);
     printf("fragment mediump   precision %d bits, range 2^%d\n", c.frag_mediump_precision, c.frag_mediump_range);
+    int fp16 = jd_gl_mediump_is_fp16();
+    printf("mediump arithmetic %s\n", fp16 == 1 ? "16 bits (a canary shader says so)"
+                                    : fp16 == 0 ? "32 bits (a canary shader says so: fp16 is not exercised here; llvmpipe "
+                                                  "lowers mediump only on CPUs with F16C)"
+                                                : "unknown (the canary shader did not run)");
+    if (c.utgard) printf("                   Mali-400/450 recognised by name: fp16 fragments, mediump packing\n");
     printf("SH packing         %s\n", c.frag_highp_precision >= 23 ? "highp (3 bytes)" : "mediump (2 x 2 bytes)");
     printf("thickness read     %s\n", c.max_vertex_texture_units >= 2 ? "per vertex" : "per fragment (no vertex texture units)");
     printf("full's diffusion   %s\n", c.max_vertex_texture_units >= 6 ? "per vertex" : "per fragment, at half resolution (under 6 vertex texture units)");

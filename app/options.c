@@ -73,6 +73,8 @@ static const opt table[] = {
     {"--proxy-cells", T_INT, OFF(rdesc.proxy_cells), 4, 64, R | B, "N          proxy mesh grid [40]"},
     {"--spread-divisor", T_INT, OFF(rdesc.spread_divisor), 1, 16, R | B, "N          spread layers at 1/N resolution [8]"},
     {"--diffusion-size", T_INT, OFF(rdesc.diffusion_size), 16, 2048, R | B, "N          full mode: first light-space diffusion level, texels per side [light map / 4]"},
+    {"--compile", T_FLAG, OFF(compile_only), 0, 0, JD_OPT_INFO,
+     "           build every shader program of every mode (as the renderer would for this device or --profile), draw nothing; a table, exit 1 if one fails"},
     {"--profile", T_STR, OFF(profile), 0, 0, R | B | JD_OPT_INFO, "NAME       emulate a device's limits: generic, vc4, mali400"},
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
     {"--antialias", T_ANTIALIAS, OFF(rdesc.antialias), 0, 0, R | B,

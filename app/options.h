@@ -32,6 +32,7 @@ typedef struct jd_options {
     int json;
     float log_every;     /* kiosk, bench: seconds between health lines, 0 = none */
     int cycle_materials; /* bench */
+    int compile_only;    /* info --compile */
     jd_load_desc load;
     jd_renderer_desc rdesc;
     jd_scene scene;

@@ -1,5 +1,6 @@
 #include "session.h"
 
+#include "gl_debug.h"
 #include "image_out.h"
 #include "profile.h"
 
@@ -89,7 +90,19 @@ int jd_session_open_mesh(jd_session *s, jd_options *o, const char *cmd)
     return mesh_path(s, o, cmd) && load_mesh(s, o, cmd);
 }
 
+/* The driver's warnings and errors on stderr, one line each. */
+static void log_driver(void *user, const char *kind, const char *msg)
+{
+    if (strcmp(kind, "info") && strcmp(kind, "performance"))
+        fprintf(stderr, "jade %s: GL driver %s: %s\n", (const char *)user, kind, msg);
+}
+
 int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
+{
+    return jd_session_open_with(s, o, cmd, log_driver, (void *)cmd);
+}
+
+int jd_session_open_with(jd_session *s, jd_options *o, const char *cmd, jd_gl_log_fn log, void *log_user)
 {
     memset(s, 0, sizeof *s);
     s->t_start_ms = jd_now_ms();
@@ -109,6 +122,7 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
         fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
         return 0;
     }
+    if (log) jd_gl_debug_enable(jd_platform_gl_proc, log, log_user);
     /* The drawable decides the size (a display mode, a window). */
     jd_platform_size(s->platform, &o->width, &o->height);
     if (jd_gl_caps_query(&s->caps, &err)) {

@@ -8,6 +8,14 @@
 
 static const char *dump_dir;
 static int dump_count;
+static jd_program_observer observer;
+static void *observer_user;
+
+void jd_program_observe(jd_program_observer fn, void *user)
+{
+    observer = fn;
+    observer_user = user;
+}
 
 void jd_program_dump_to(const char *dir) { dump_dir = dir; }
 
@@ -112,8 +120,20 @@ static jd_result compile(GLenum type, const char *name, const char *defines, GLu
     return JD_OK;
 }
 
+static jd_result build_program(const char *vs_name, const char *fs_name, const char *defines,
+                               const char *const *attribs, GLuint *out, jd_error *err);
+
 jd_result jd_program_build(const char *vs_name, const char *fs_name, const char *defines,
                            const char *const *attribs, GLuint *out, jd_error *err)
+{
+    if (observer) observer(observer_user, vs_name, fs_name, defines, -1, NULL);
+    jd_result r = build_program(vs_name, fs_name, defines, attribs, out, err);
+    if (observer) observer(observer_user, vs_name, fs_name, defines, (int)r, r && err ? err->msg : NULL);
+    return r;
+}
+
+static jd_result build_program(const char *vs_name, const char *fs_name, const char *defines,
+                               const char *const *attribs, GLuint *out, jd_error *err)
 {
     GLuint vs = 0, fs = 0;
     jd_result r = compile(GL_VERTEX_SHADER, vs_name, defines, &vs, err);

@@ -21,6 +21,14 @@ const char *jd_shader_text(const char *name);
 jd_result jd_program_build(const char *vs_name, const char *fs_name, const char *defines,
                            const char *const *attribs, GLuint *out, jd_error *err);
 
+/* Told about every program as it is built: once before compiling
+ * (result < 0) and once after linking (JD_OK or the error, whose message
+ * is in `msg`). For `jade info --compile` and device-compiler runs: a
+ * driver's own messages printed in between belong to this program. */
+typedef void (*jd_program_observer)(void *user, const char *vs, const char *fs, const char *defines, int result,
+                                    const char *msg);
+void jd_program_observe(jd_program_observer fn, void *user);
+
 /* Tests: write every assembled shader source to dir (NULL: stop), named
  * NNN_<file>, exactly as the driver receives it. */
 void jd_program_dump_to(const char *dir);
