@@ -49,6 +49,17 @@ jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)
     glGetShaderPrecisionFormat(GL_FRAGMENT_SHADER, GL_MEDIUM_FLOAT, range, &prec);
     c->frag_mediump_precision = prec;
     c->frag_mediump_range = range[1];
+    /* Mali-400/450 (Utgard) fragment processors compute in fp16 whatever
+     * the precision query says: Mesa's lima reports 23 bits for mediump and
+     * highp. Recognised by name, so jade packs for mediump there. */
+    if (strstr(c->renderer, "Mali-4") || strstr(c->renderer, "Mali-3") || strstr(c->renderer, "Mali-2") ||
+        strstr(c->renderer, "Mali400") || strstr(c->renderer, "Mali450") || !strncmp(c->renderer, "lima", 4)) {
+        c->utgard = 1;
+        c->frag_highp_precision = 0;
+        c->frag_highp_range = 0;
+        if (c->frag_mediump_precision > 10) c->frag_mediump_precision = 10;
+        if (c->frag_mediump_range > 15) c->frag_mediump_range = 15;
+    }
     c->ext_element_index_uint = jd_gl_has_extension("GL_OES_element_index_uint");
     c->ext_disjoint_timer_query = jd_gl_has_extension("GL_EXT_disjoint_timer_query");
     c->ext_depth_texture = jd_gl_has_extension("GL_OES_depth_texture");
@@ -79,4 +90,68 @@ void jd_gl_probe_names(jd_gl_names *out)
     glGenRenderbuffers(1, &n);
     glDeleteRenderbuffers(1, &n);
     out->renderbuffer = n;
+}
+
+/* (1 + v) * k * 0.001 - 1 with v = 1e-4 from a varying and k = 1000 from a
+ * uniform, so no compiler can fold it: 1e-4 at fp32, 0 at fp16 (1 + 1e-4
+ * rounds to 1 with 10 mantissa bits). Written x 5000 + 0.25 into RGBA8. */
+static const char canary_vs[] =
+    "#version 100\nattribute vec2 a_corner;\nvarying highp float v_v;\n"
+    "void main() { v_v = 1e-4; gl_Position = vec4(a_corner, 0.0, 1.0); }\n";
+static const char canary_fs[] =
+    "#version 100\nprecision mediump float;\nvarying mediump float v_v;\nuniform mediump float u_k;\n"
+    "void main() { float x = (1.0 + v_v) * u_k * 0.001 - 1.0; gl_FragColor = vec4(x * 5000.0 + 0.25, 0.0, 0.0, 1.0); }\n";
+
+static GLuint canary_shader(GLenum type, const char *src)
+{
+    GLuint s = glCreateShader(type);
+    glShaderSource(s, 1, &src, NULL);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) { glDeleteShader(s); return 0; }
+    return s;
+}
+
+int jd_gl_mediump_is_fp16(void)
+{
+    GLuint vs = canary_shader(GL_VERTEX_SHADER, canary_vs), fs = canary_shader(GL_FRAGMENT_SHADER, canary_fs);
+    if (!vs || !fs) { glDeleteShader(vs); glDeleteShader(fs); return -1; }
+    GLuint p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    glBindAttribLocation(p, 0, "a_corner");
+    glLinkProgram(p);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLuint tex, fbo;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 4, 4, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    static const float quad[] = {-1, -1, 1, -1, -1, 1, 1, 1};
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glViewport(0, 0, 4, 4);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glUseProgram(p);
+    glUniform1f(glGetUniformLocation(p, "u_k"), 1000.0f);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, quad);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisableVertexAttribArray(0);
+    unsigned char px[4] = {0, 0, 0, 0};
+    glReadPixels(1, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &tex);
+    glUseProgram(0);
+    glDeleteProgram(p);
+    int linked = glGetError() == GL_NO_ERROR;
+    /* fp32: 0.5 + 0.25 = 0.75 (191); fp16: 0.25 (64). */
+    if (!linked) return -1;
+    return px[0] < 128 ? 1 : 0;
 }

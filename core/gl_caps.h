@@ -17,12 +17,19 @@ typedef struct jd_gl_caps {
         ext_texture_float, ext_packed_depth_stencil, ext_rgb8_rgba8, ext_texture_npot,
         ext_standard_derivatives;
     int num_extensions;
+    int utgard; /* Mali-400/450 and kin by renderer string: fp16 fragments whatever the query says */
     char profile[16]; /* the device profile applied, or empty */
 } jd_gl_caps;
 
 /* proc returns GL entry points by name (from the platform); may be NULL. */
 jd_result jd_gl_caps_query(jd_gl_caps *caps, jd_error *err);
 int jd_gl_has_extension(const char *name);
+
+/* Whether mediump fragment arithmetic really runs at 16 bits here, by a
+ * canary shader that no compiler can fold: 1 yes, 0 no (32 bits: e.g.
+ * llvmpipe on a CPU without F16C), -1 could not tell. Draws into a 4x4
+ * target and reads one pixel back: for start-up and tests, never a frame. */
+int jd_gl_mediump_is_fp16(void);
 
 /* The names the current context would give a new texture, buffer,
  * framebuffer and renderbuffer (each generated and deleted at once). GL

@@ -11,9 +11,10 @@ const jd_profile jd_profiles[] = {
      "Mesa vc4_screen.c: 2D textures 2048, 8 varyings, samplers in both stages, fp32 (highp) shaders, "
      "8- and 16-bit index buffers only",
      "4x multisampling in the EGL config (resolved in VideoCore IV's tile buffer)"},
-    {"mali400", "Mali-400/450 (Utgard: ARM driver, Mesa lima)", 4096, 4096, 4096, 1024, 256, 256, 12, 8, 0, 0, 0,
+    {"mali400", "Mali-400/450 (Utgard: ARM driver, Mesa lima)", 4096, 4096, 4096, 1024, 256, 256, 8, 8, 0, 0, 0,
      "ARM gles_config_m200.h / gles2_config_m200.h: 256 uniform vectors per stage, no vertex texture units, "
-     "renderbuffers and viewports 4096, cube maps 1024; fragment shaders fp16 only",
+     "renderbuffers and viewports 4096, cube maps 1024; fragment shaders fp16 only; Mesa lima_screen.c: "
+     "8 varyings (the hardware's limit)",
      "4x multisampling in the EGL config (free on Mali-400's tile buffer)"},
 };
 const int jd_profile_count = (int)(sizeof jd_profiles / sizeof jd_profiles[0]);
