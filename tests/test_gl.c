@@ -76,7 +76,10 @@ static void test_sh_reduction(jd_renderer *r, const char *label, double tol)
 int main(int argc, char **argv)
 {
     const char *mesh_path = argc > 1 ? argv[1] : "assets/default.drc";
-    if (argc > 2) jd_program_dump_to(argv[2]); /* for tests/glsl_validate.sh */
+    /* test_gl MESH --mediump-fp16: only the mediump SH packing, and only
+     * where mediump really runs at 16 bits (a canary says); else skipped. */
+    int fp16_only = argc > 2 && !strcmp(argv[2], "--mediump-fp16");
+    if (argc > 2 && !fp16_only) jd_program_dump_to(argv[2]); /* for tests/glsl_validate.sh */
     jd_arena a;
     jd_arena_init(&a, mem, sizeof mem);
     jd_error err = {0};
@@ -97,6 +100,24 @@ int main(int argc, char **argv)
     printf("GL: %s | %s | %s\n", caps.renderer, caps.version, jd_platform_describe(p));
 
     size_t mark = jd_arena_mark(&a);
+    if (fp16_only) {
+        int fp16 = jd_gl_mediump_is_fp16();
+        if (fp16 != 1) {
+            printf("skipped: mediump runs at %s on this driver (canary shader), so an fp16 claim cannot be tested "
+                   "here; llvmpipe lowers mediump to 16 bits only on CPUs with F16C\n",
+                   fp16 == 0 ? "32 bits" : "an unknown precision");
+            jd_platform_close(p);
+            return 77;
+        }
+        printf("mediump runs at 16 bits here (canary shader): the mediump packing is tested at fp16\n");
+        jd_renderer *r = make(&a, &mesh, &caps, p, JD_PRECISION_MEDIUMP, 64);
+        if (r) {
+            test_sh_reduction(r, "mediump, run at fp16,", 0.03);
+            jd_renderer_destroy(r);
+        }
+        jd_platform_close(p);
+        return jd_check_summary("gl mediump fp16");
+    }
     jd_renderer *r = make(&a, &mesh, &caps, p, JD_PRECISION_AUTO, 64);
     if (r) {
         /* 100 frames per mode, light orbiting: the core must not allocate. */
@@ -116,6 +137,8 @@ int main(int argc, char **argv)
         jd_renderer_destroy(r);
     }
     jd_arena_reset(&a, mark);
+    /* The mediump packing's arithmetic at whatever precision this driver
+     * runs mediump; ctest gl_mediump_fp16 checks it where that is 16 bits. */
     r = make(&a, &mesh, &caps, p, JD_PRECISION_MEDIUMP, 64);
     if (r) {
         test_sh_reduction(r, "mediump", 0.03);
