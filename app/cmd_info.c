@@ -49,10 +49,12 @@ static void on_program(void *user, const char *vs, const char *fs, const char *d
     l->count++;
 }
 
+/* What the compiler says, and every warning or error; not the driver's
+ * chatter about buffer placement. */
 static void on_driver_message(void *user, const char *kind, const char *msg)
 {
     (void)user;
-    fprintf(stderr, "jade: GL driver %s: %s\n", kind, msg);
+    if (strcmp(kind, "info") && strcmp(kind, "performance")) fprintf(stderr, "jade: GL driver %s: %s\n", kind, msg);
 }
 
 static int compile_all(jd_options *o)
@@ -123,12 +125,20 @@ int jd_cmd_info(int argc, char **argv)
     printf("SH packing         %s\n", c.frag_highp_precision >= 23 ? "highp (3 bytes)" : "mediump (2 x 2 bytes)");
     printf("thickness read     %s\n", c.max_vertex_texture_units >= 2 ? "per vertex" : "per fragment (no vertex texture units)");
     printf("full's diffusion   %s\n", c.max_vertex_texture_units >= 6 ? "per vertex" : "per fragment, at half resolution (under 6 vertex texture units)");
+    /* The target jade draws into here: EXT_multisampled_render_to_texture
+     * makes the headless one multisampled where the driver has it. */
     GLint samples = 0;
+    glBindFramebuffer(GL_FRAMEBUFFER, jd_platform_framebuffer(p));
     glGetIntegerv(GL_SAMPLES, &samples);
-    printf("anti-aliasing      %s\n", prof ? prof->antialias
-                                         : samples > 1 ? "multisampling in the EGL config"
-                                                       : "the pass after the frame (this headless target has no multisampling; "
-                                                         "windows and KMS take a 4x config where there is one)");
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (prof)
+        printf("anti-aliasing      %s\n", prof->antialias);
+    else if (samples > 1)
+        printf("anti-aliasing      %dx multisampling in this headless target (EXT_multisampled_render_to_texture)\n",
+               samples);
+    else
+        printf("anti-aliasing      the pass after the frame (this headless target has no multisampling; windows and "
+               "KMS take a 4x config where there is one)\n");
     printf("extensions (%d), those jade can use:\n", c.num_extensions);
     printf("  OES_element_index_uint      %s (meshes over 65,536 vertices)\n", c.ext_element_index_uint ? "yes" : "no");
     printf("  EXT_disjoint_timer_query    %s (GPU pass timings in bench)\n", c.ext_disjoint_timer_query ? "yes" : "no");

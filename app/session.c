@@ -161,7 +161,7 @@ const char *jd_antialias_describe(const jd_renderer *r)
     if (jd_renderer_post_antialias(r))
         snprintf(line, sizeof line, "anti-aliasing: a pass after the frame (the target has no multisampling)");
     else if (samples > 1)
-        snprintf(line, sizeof line, "anti-aliasing: %dx multisampling (the EGL config)", samples);
+        snprintf(line, sizeof line, "anti-aliasing: %dx multisampling in the target", samples);
     else
         snprintf(line, sizeof line, "anti-aliasing: off");
     return line;

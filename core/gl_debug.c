@@ -15,8 +15,9 @@ typedef void (*set_callback_fn)(debug_proc callback, const void *user);
 static jd_gl_log_fn log_fn;
 static void *log_user;
 
-static const char *kind_of(GLenum type, GLenum severity)
+static const char *kind_of(GLenum source, GLenum type, GLenum severity)
 {
+    if (source == 0x8248) return "shader compiler"; /* GL_DEBUG_SOURCE_SHADER_COMPILER */
     switch (type) {
     case 0x824C: return "error";              /* GL_DEBUG_TYPE_ERROR */
     case 0x824D: return "deprecated";         /* DEPRECATED_BEHAVIOR */
@@ -31,11 +32,10 @@ static const char *kind_of(GLenum type, GLenum severity)
 static void on_message(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
                        const GLchar *message, const void *user)
 {
-    (void)source;
     (void)id;
     (void)length;
     (void)user;
-    if (log_fn) log_fn(log_user, kind_of(type, severity), message);
+    if (log_fn) log_fn(log_user, kind_of(source, type, severity), message);
 }
 
 int jd_gl_debug_enable(void *(*get_proc)(const char *name), jd_gl_log_fn fn, void *user)

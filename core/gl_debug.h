@@ -4,6 +4,9 @@
 #ifndef JD_GL_DEBUG_H
 #define JD_GL_DEBUG_H
 
+/* kind: "shader compiler" (whatever its type: shader-db counts, spills),
+ * "error", "undefined behaviour", "deprecated", "portability",
+ * "performance", "warning" (high severity) or "info". */
 typedef void (*jd_gl_log_fn)(void *user, const char *kind, const char *msg);
 
 /* Installs `fn` for the current context where GL_KHR_debug exists (looked
