@@ -17,7 +17,7 @@
 #include "options.h"
 
 /* Chosen by content, not by name: a PFM starts "PF" and white space. */
-static float *read_image(const char *path, int *w, int *h, unsigned char **rgba, char *why, size_t cap)
+static float *read_image(const char *path, int *w, int *h, char *why, size_t cap)
 {
     size_t n;
     unsigned char *buf = jd_input_read(path, &n, why, cap);
@@ -34,18 +34,18 @@ static float *read_image(const char *path, int *w, int *h, unsigned char **rgba,
     if (!out) { stbi_image_free(px); snprintf(why, cap, "out of memory"); return NULL; }
     for (long i = 0; i < (long)*w * *h; i++)
         for (int k = 0; k < 3; k++) out[3 * i + k] = jd_display_to_linear(px[4 * i + k]);
-    if (rgba) *rgba = px; else stbi_image_free(px);
+    stbi_image_free(px); /* only the linear copy is compared */
     return out;
 }
 
 static int metric(const char *paths[2], const char *mask_path)
 {
     int w[2] = {0, 0}, h[2] = {0, 0}, rc = 1;
-    unsigned char *rgba[2] = {NULL, NULL}, *mask = NULL, *m = NULL;
+    unsigned char *mask = NULL, *m = NULL;
     float *img[2] = {NULL, NULL};
     char why[160];
     for (int k = 0; k < 2; k++) {
-        img[k] = read_image(paths[k], &w[k], &h[k], &rgba[k], why, sizeof why);
+        img[k] = read_image(paths[k], &w[k], &h[k], why, sizeof why);
         if (!img[k]) {
             fprintf(stderr, "jade metric: %s: %s\n", paths[k], why);
             goto done;
@@ -97,7 +97,7 @@ static int metric(const char *paths[2], const char *mask_path)
            isfinite(r.psnr_scaled) ? r.psnr_scaled : 999.0, r.ssim_scaled, r.peak);
     rc = fflush(stdout) == 0 && !ferror(stdout) ? 0 : 1;
 done:
-    for (int k = 0; k < 2; k++) { free(img[k]); stbi_image_free(rgba[k]); }
+    for (int k = 0; k < 2; k++) free(img[k]);
     stbi_image_free(m);
     free(mask);
     return rc;
