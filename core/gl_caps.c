@@ -55,11 +55,14 @@ jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)
     if (strstr(c->renderer, "Mali-4") || strstr(c->renderer, "Mali-3") || strstr(c->renderer, "Mali-2") ||
         strstr(c->renderer, "Mali400") || strstr(c->renderer, "Mali450") || !strncmp(c->renderer, "lima", 4)) {
         c->utgard = 1;
+        c->small_register_file = 1;
         c->frag_highp_precision = 0;
         c->frag_highp_range = 0;
         if (c->frag_mediump_precision > 10) c->frag_mediump_precision = 10;
         if (c->frag_mediump_range > 15) c->frag_mediump_range = 15;
     }
+    /* VideoCore IV (Mesa vc4 says "VC4 V3D 2.1"; Broadcom's blob "VideoCore IV HW"). */
+    if (strstr(c->renderer, "VC4") || strstr(c->renderer, "VideoCore IV")) c->small_register_file = 1;
     c->ext_element_index_uint = jd_gl_has_extension("GL_OES_element_index_uint");
     c->ext_disjoint_timer_query = jd_gl_has_extension("GL_EXT_disjoint_timer_query");
     c->ext_depth_texture = jd_gl_has_extension("GL_OES_depth_texture");

@@ -18,6 +18,7 @@ typedef struct jd_gl_caps {
         ext_standard_derivatives;
     int num_extensions;
     int utgard; /* Mali-400/450 and kin by renderer string: fp16 fragments whatever the query says */
+    int small_register_file; /* VideoCore IV, Mali-400/450 (by name or profile): shaders kept small */
     char profile[16]; /* the device profile applied, or empty */
 } jd_gl_caps;
 

@@ -54,5 +54,7 @@ void jd_profile_apply(const jd_profile *p, jd_gl_caps *c)
     c->ext_texture_float = 0;
     c->ext_packed_depth_stencil = 0;
     c->ext_standard_derivatives = 0;
+    /* The boards' profiles stand for their register files too. */
+    if (!strcmp(p->name, "vc4") || !strcmp(p->name, "mali400")) c->small_register_file = 1;
     snprintf(c->profile, sizeof c->profile, "%s", p->name);
 }

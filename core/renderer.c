@@ -12,6 +12,7 @@
 #include "vmath.h"
 
 #define SH_BLOCK 8
+#define SH_BLOCK_SMALL 2 /* VideoCore IV, Mali-400: see jd_renderer_create */
 #define BLUR_TAPS 4
 /* The full mode's light-space levels: Gaussians of 1, 2, 4, 8 and 16 texels
  * of the first level, one RGBA8 texture each, every second one half the
@@ -73,6 +74,8 @@ struct jd_renderer {
     int vertex_diffusion; /* the full mode's levels summed in the vertex stage */
     int target_samples;   /* GL_SAMPLES of the platform's target */
     int post_aa;          /* frames go to `scene`, then through the anti-aliasing pass */
+    int sh_block;         /* capture texels per SH projection pixel, per side (8, or 2 on small register files) */
+    int sh_mid;           /* > 1: an intermediate reduction by sh_mid x sh_mid, so no pass sums over 64 texels */
     jd_mesh proxy, capture_proxy;
     GLuint mesh_vbo, mesh_ibo, proxy_vbo, proxy_ibo, cap_vbo, cap_ibo, quad_vbo;
     GLuint tail_tex;
@@ -85,16 +88,17 @@ struct jd_renderer {
     float proxy_error;    /* world units: how far the proxy may stray from the mesh */
     GLenum mesh_index_type;
     shade_prog shade[JD_MODE_COUNT], a0, wide_prog; /* wide_prog: full's levels at half resolution */
-    GLuint depth_prog, capture_prog, project_prog, reduce_faces_prog, reduce_final_prog, blur_prog, combine_prog;
+    GLuint depth_prog, capture_prog, project_prog, reduce_mid_prog, reduce_faces_prog, reduce_final_prog, blur_prog,
+        combine_prog;
     diff_prog diff_first, diff_next; /* level 1 from the light map; the others */
     GLuint aa_prog;
     GLint aa_src, aa_texel, aa_scale;
     GLint depth_mvp, depth_light_dir, depth_f0;
     GLint cap_mvp, cap_light_mvp, cap_light_dir, cap_bias, cap_depth, cap_light_color;
-    GLint proj_atlas, proj_texel, rf_src, rf_texel, rl_src, rl_texel;
+    GLint proj_atlas, proj_texel, rm_src, rm_texel, rf_src, rf_texel, rl_src, rl_texel;
     GLint blur_src, blur_step, blur_inv, blur_scale;
     GLint comb_src, comb_step, comb_inv, comb_a1, comb_w1, comb_w2, comb_scale;
-    target light, atlas, sh1, sh2, sh3, spread0, spread_tmp, spread1, spread2;
+    target light, atlas, sh1, sh_mid_t, sh2, sh3, spread0, spread_tmp, spread1, spread2;
     target diff_tmp, diff_lv[DIFF_TEXTURES];
     target scene;         /* the frame before anti-aliasing (post_aa only) */
     target wide;          /* full's levels summed at half resolution (without vertex diffusion) */
@@ -347,7 +351,7 @@ static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_err
 static jd_result build_programs(jd_renderer *r, jd_error *err)
 {
     char def[512];
-    int n = r->d.cube_size, nb = n / SH_BLOCK;
+    int n = r->d.cube_size, nb = n / r->sh_block;
     jd_result res;
     for (int m = 0; m < JD_MODE_COUNT; m++) {
         int translucent = m == JD_MODE_SINGLE || m == JD_MODE_DUAL;
@@ -400,11 +404,21 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     r->cap_light_color = glGetUniformLocation(r->capture_prog, "u_light_color");
 
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_N %d\n#define JD_B %d\n#define JD_NB %d\n",
-             r->highp, n, SH_BLOCK, nb);
+             r->highp, n, r->sh_block, nb);
     if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_project.frag", def, quad_attribs, &r->project_prog, err)))
         return res;
     r->proj_atlas = glGetUniformLocation(r->project_prog, "u_atlas");
     r->proj_texel = glGetUniformLocation(r->project_prog, "u_atlas_texel");
+    if (r->sh_mid > 1) {
+        snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, r->sh_mid,
+                 r->sh_mid);
+        if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs,
+                         &r->reduce_mid_prog, err)))
+            return res;
+        r->rm_src = glGetUniformLocation(r->reduce_mid_prog, "u_src");
+        r->rm_texel = glGetUniformLocation(r->reduce_mid_prog, "u_src_texel");
+        nb /= r->sh_mid;
+    }
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, nb, nb);
     if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_faces_prog, err)))
         return res;
@@ -463,8 +477,15 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     if (!d->capture_cells) d->capture_cells = 24;
     if (!d->spread_divisor) d->spread_divisor = 8;
     if (!d->diffusion_size) d->diffusion_size = d->light_map_size / 4;
-    if (d->cube_size < 8 || d->cube_size > 256 || d->cube_size % SH_BLOCK)
-        return jd_fail(err, JD_ERR_ARG, "cube size %d must be a multiple of %d from 8 to 256", d->cube_size, SH_BLOCK);
+    /* The SH projection sums a block of capture texels per pixel; 8x8 is
+     * more than the register files of VideoCore IV (vc4 cannot allocate it)
+     * and Mali-400 (lima spills 33 values) hold, so those take 2x2 blocks
+     * and one more reduction pass (tools/device-shaders.sh measures it). */
+    r->sh_block = d->caps->small_register_file ? SH_BLOCK_SMALL : SH_BLOCK;
+    if (d->cube_size < 8 || d->cube_size > 256 || d->cube_size % (8 * r->sh_block))
+        return jd_fail(err, JD_ERR_ARG, "cube size %d must be a multiple of %d from 8 to 256", d->cube_size,
+                       8 * r->sh_block);
+    r->sh_mid = d->cube_size / r->sh_block > 8 ? d->cube_size / r->sh_block / 8 : 1;
     if (d->light_map_size < 16 || d->light_map_size > 2048)
         return jd_fail(err, JD_ERR_ARG, "light map size %d must be 16..2048", d->light_map_size);
     if (d->diffusion_size < 16 || d->diffusion_size > d->light_map_size)
@@ -537,12 +558,14 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     }
     if ((res = build_programs(r, err))) goto fail;
 
-    int n = d->cube_size, nb = n / SH_BLOCK;
+    int n = d->cube_size, nb = n / r->sh_block;
     int sw = (d->max_width + d->spread_divisor - 1) / d->spread_divisor;
     int shh = (d->max_height + d->spread_divisor - 1) / d->spread_divisor;
     if ((res = make_target(r, &r->light, d->light_map_size, d->light_map_size, 1, 0, "light depth", err)) ||
         (res = make_target(r, &r->atlas, 3 * n, 2 * n, 1, 0, "cube capture", err)) ||
         (res = make_target(r, &r->sh1, 6 * nb, 27 * nb, 0, 0, "SH projection", err)) ||
+        (r->sh_mid > 1 &&
+         (res = make_target(r, &r->sh_mid_t, 6 * nb / r->sh_mid, 27 * nb / r->sh_mid, 0, 0, "SH partial sums", err))) ||
         (res = make_target(r, &r->sh2, 6, 27, 0, 0, "SH reduction", err)) ||
         (res = make_target(r, &r->sh3, 1, 27, 0, 0, "SH result", err)) ||
         (res = make_target(r, &r->spread0, sw, shh, 1, 1, "spread A0", err)) ||
@@ -571,8 +594,8 @@ fail:
 void jd_renderer_destroy(jd_renderer *r)
 {
     if (!r) return;
-    target *ts[] = {&r->light,   &r->atlas,   &r->sh1,     &r->sh2, &r->sh3, &r->spread0, &r->spread_tmp,
-                    &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->wide};
+    target *ts[] = {&r->light,   &r->atlas,   &r->sh1,      &r->sh_mid_t, &r->sh2,   &r->sh3, &r->spread0,
+                    &r->spread_tmp, &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->wide};
     for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++) free_target(ts[i]);
     for (int i = 0; i < DIFF_TEXTURES; i++) free_target(&r->diff_lv[i]);
     GLuint bufs[] = {r->mesh_vbo, r->mesh_ibo, r->proxy_vbo, r->proxy_ibo, r->cap_vbo, r->cap_ibo, r->quad_vbo};
@@ -581,7 +604,7 @@ void jd_renderer_destroy(jd_renderer *r)
     if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
     glDeleteProgram(r->wide_prog.id);
-    GLuint progs[] = {r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_faces_prog,
+    GLuint progs[] = {r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_mid_prog, r->reduce_faces_prog,
                       r->reduce_final_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id, r->aa_prog};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
     memset(r, 0, sizeof *r);
@@ -839,10 +862,19 @@ static jd_result pass_sh(jd_renderer *r, frame_params *f, jd_error *err)
     glUniform2f(r->proj_texel, 1.0f / r->atlas.tw, 1.0f / r->atlas.th);
     glBindTexture(GL_TEXTURE_2D, r->atlas.tex);
     draw_quad_into(r, &r->sh1);
+    const target *src = &r->sh1;
+    if (r->sh_mid > 1) {
+        glUseProgram(r->reduce_mid_prog);
+        glUniform1i(r->rm_src, 0);
+        glUniform2f(r->rm_texel, 1.0f / r->sh1.tw, 1.0f / r->sh1.th);
+        glBindTexture(GL_TEXTURE_2D, r->sh1.tex);
+        draw_quad_into(r, &r->sh_mid_t);
+        src = &r->sh_mid_t;
+    }
     glUseProgram(r->reduce_faces_prog);
     glUniform1i(r->rf_src, 0);
-    glUniform2f(r->rf_texel, 1.0f / r->sh1.tw, 1.0f / r->sh1.th);
-    glBindTexture(GL_TEXTURE_2D, r->sh1.tex);
+    glUniform2f(r->rf_texel, 1.0f / src->tw, 1.0f / src->th);
+    glBindTexture(GL_TEXTURE_2D, src->tex);
     draw_quad_into(r, &r->sh2);
     glUseProgram(r->reduce_final_prog);
     glUniform1i(r->rl_src, 0);

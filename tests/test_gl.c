@@ -137,6 +137,17 @@ int main(int argc, char **argv)
         jd_renderer_destroy(r);
     }
     jd_arena_reset(&a, mark);
+    /* Small register files (VideoCore IV, Mali-400) project 2x2 blocks and
+     * reduce once more: the same coefficients. */
+    jd_arena_reset(&a, mark);
+    jd_gl_caps small = caps;
+    small.small_register_file = 1;
+    r = make(&a, &mesh, &small, p, JD_PRECISION_AUTO, 64);
+    if (r) {
+        test_sh_reduction(r, "2x2-block", 0.01);
+        jd_renderer_destroy(r);
+    }
+    jd_arena_reset(&a, mark);
     /* The mediump packing's arithmetic at whatever precision this driver
      * runs mediump; ctest gl_mediump_fp16 checks it where that is 16 bits. */
     r = make(&a, &mesh, &caps, p, JD_PRECISION_MEDIUMP, 64);
