@@ -33,3 +33,12 @@ else
     rm -f "$fuzz_probe"
     echo "== fuzz smoke skipped: clang with libFuzzer is not installed (Debian: clang libclang-rt-14-dev)"
 fi
+# Every shader program through the real Mali-400 (lima), VideoCore IV (vc4)
+# and Mali Midgard (panfrost) compilers, against the committed budget. The
+# first run builds Mesa from Debian's source package (about 6 minutes).
+echo "== device compilers (tools/device-shaders.sh)"
+set +e
+./tools/device-shaders.sh --check tests/device-shaders.expected
+rc=$?
+set -e
+[ "$rc" -eq 0 ] || [ "$rc" -eq 77 ] || exit "$rc"

@@ -1,0 +1,154 @@
+#!/bin/sh
+# Every jade shader program through the real device compilers, with no GPU:
+# Mesa's lima (Mali-400/450), vc4 (VideoCore IV) and panfrost (Mali
+# Midgard T720/T860) drivers built from Debian's own source package, run
+# behind Mesa's drm-shim (a preloaded library that fakes the kernel
+# device, as Mesa's shader-db does).
+#
+#   tools/device-shaders.sh [--check EXPECTED] [--update EXPECTED]
+#
+# Prints one table row per driver and program: compiled, linked,
+# instructions, registers/threads, spills and fills, and the compiler's
+# message on failure. With --check, exits 1 when a program stops compiling
+# or linking, or its instruction count or spills grow more than 10% over
+# the committed table (tests/device-shaders.expected); --update rewrites it.
+#
+# The Mesa build (about 6 minutes on 2 cores the first time) is cached in
+# $JADE_DEVICE_CACHE (default: build-device). Exits 77 (skip) when the
+# source package or the build tools cannot be had.
+set -eu
+cd "$(dirname "$0")/.."
+root=$(pwd)
+cache=${JADE_DEVICE_CACHE:-$root/build-device}
+jade=${JADE:-$root/build/jade}
+mode=print expected=""
+case "${1:-}" in
+    --check) mode=check expected=$2 ;;
+    --update) mode=update expected=$2 ;;
+    "") ;;
+    *) echo "usage: $0 [--check|--update tests/device-shaders.expected]"; exit 2 ;;
+esac
+mkdir -p "$cache"
+skip() { echo "device-shaders: skipped: $*"; exit 77; }
+[ -x "$jade" ] || skip "$jade is not built"
+
+# 1. Mesa's source, from a deb-src entry derived from this machine's own
+#    apt sources (never a host name written here), in a private apt state.
+mesa=$cache/mesa
+if [ ! -f "$mesa/.extracted" ]; then
+    for t in dpkg-source meson ninja bison flex; do command -v $t >/dev/null || skip "$t is missing (apt: dpkg-dev meson ninja-build bison flex python3-mako)"; done
+    /usr/bin/python3 -c 'import mako' 2>/dev/null || skip "python3-mako is missing"
+    apt=$cache/apt
+    mkdir -p "$apt/sources.list.d" "$apt/lists/partial" "$cache/src"
+    : > "$apt/sources.list.d/src.sources"
+    for f in /etc/apt/sources.list.d/*.sources; do
+        [ -f "$f" ] && sed -n '/^Types:/,$p' "$f" | sed 's/^Types:.*/Types: deb-src/' >> "$apt/sources.list.d/src.sources" &&
+            echo >> "$apt/sources.list.d/src.sources"
+    done
+    list=$apt/sources.list
+    : > "$list"
+    for f in /etc/apt/sources.list /etc/apt/sources.list.d/*.list; do
+        [ -f "$f" ] && grep -E '^deb ' "$f" | grep -v 'cdrom:' | sed 's/^deb /deb-src /' >> "$list" || true
+    done
+    aptopt="-o Dir::Etc::SourceParts=$apt/sources.list.d -o Dir::Etc::SourceList=$list -o Dir::State::Lists=$apt/lists"
+    # shellcheck disable=SC2086
+    apt-get -q $aptopt update >"$cache/apt.log" 2>&1 || true
+    version=$(dpkg-query -W -f '${Version}' libgl1-mesa-dri 2>/dev/null || true)
+    # shellcheck disable=SC2086
+    (cd "$cache/src" && { apt-get -q $aptopt source --download-only "mesa=$version" ||
+                          apt-get -q $aptopt source --download-only mesa; } >>"$cache/apt.log" 2>&1) ||
+        skip "apt-get source mesa failed: $(grep -E '^(E|W):' "$cache/apt.log" | head -1)"
+    rm -rf "$mesa"
+    dpkg-source -x "$(ls "$cache"/src/mesa_*.dsc | head -1)" "$mesa" >/dev/null
+    (cd "$mesa" && patch -p1 -s < "$root/tools/device/vc4-shim.patch")
+    touch "$mesa/.extracted"
+fi
+
+# 2. The drivers, their compilers and the shims.
+build=$cache/mesa-build
+if [ ! -f "$build/.built" ]; then
+    start=$(date +%s)
+    rm -rf "$build"
+    # Debian's own python3 (with python3-mako), not one a version manager put first.
+    PATH=/usr/bin:$PATH meson setup "$build" "$mesa" --buildtype=release -Dgallium-drivers=lima,vc4,panfrost,kmsro \
+        -Dvulkan-drivers= -Dllvm=disabled -Dplatforms= -Dglx=disabled -Degl=enabled -Dgbm=enabled \
+        -Dgles1=disabled -Dgles2=enabled -Dopengl=true -Dtools=drm-shim,lima,panfrost -Dshared-glapi=enabled \
+        -Dvalgrind=disabled -Dlibunwind=disabled -Dzstd=disabled >"$cache/meson.log" 2>&1 ||
+        { tail -20 "$cache/meson.log"; skip "meson setup failed (see $cache/meson.log)"; }
+    PATH=/usr/bin:$PATH ninja -C "$build" >"$cache/ninja.log" 2>&1 || { tail -20 "$cache/ninja.log"; echo "device-shaders: Mesa build failed"; exit 1; }
+    echo "device-shaders: Mesa built in $(( $(date +%s) - start )) s"
+    touch "$build/.built"
+fi
+
+# 3. jade info --compile through each driver: every program of every mode
+#    for that GPU's profile, compiled at link time (the drivers' precompile
+#    switches), nothing drawn (the shims never signal a fence). The
+#    compilers' statistics arrive as GL_KHR_debug messages after the
+#    "compiling program N" line they belong to.
+lib_dir() { dirname "$(find "$build" -name "$1" -print -quit)"; }
+egl=$(lib_dir 'libEGL.so.1') gles=$(lib_dir 'libGLESv2.so.2') glapi=$(lib_dir 'libglapi.so.0') gbm=$(lib_dir 'libgbm.so.1')
+dri=$(lib_dir 'lima_dri.so')
+shim() { find "$build" -name "lib$1_noop_drm_shim.so" -print -quit; }
+run_driver() { # NAME PROFILE SHIM ENV...
+    name=$1 profile=$2 lib=$3
+    shift 3
+    env LD_LIBRARY_PATH="$egl:$gles:$glapi:$gbm" LIBGL_DRIVERS_PATH="$dri" EGL_PLATFORM=surfaceless \
+        MESA_SHADER_CACHE_DISABLE=true LD_PRELOAD="$lib" "$@" \
+        timeout 300 "$jade" info --compile --profile "$profile" >"$cache/$name.log" 2>&1
+    echo "$?" > "$cache/$name.rc"
+}
+run_driver lima mali400 "$(shim lima)" LIMA_DEBUG=precompile
+run_driver vc4 vc4 "$(shim vc4)" VC4_DEBUG=shaderdb
+run_driver panfrost-t720 generic "$(shim panfrost)" PAN_MESA_DEBUG=precompile PAN_GPU_ID=720
+run_driver panfrost-t860 generic "$(shim panfrost)" PAN_MESA_DEBUG=precompile PAN_GPU_ID=860
+
+# 4. One row per driver and program.
+table=$cache/device-shaders.table
+for d in lima vc4 panfrost-t720 panfrost-t860; do
+    awk -v drv="$d" -v rc="$(cat "$cache/$d.rc")" '
+        function flush() {
+            if (label == "") return
+            if (status == "") status = "ok"
+            printf "%-14s %-62s vs %4s fs %4s spills %3d fills %3d %-9s %s\n", drv, label, vs == "" ? "-" : vs,
+                   fs == "" ? "-" : fs, spills, fills, extra == "" ? "-" : extra, status
+            label = ""
+        }
+        /^jade: compiling program / { flush(); label = $4 $5; vs = fs = extra = status = ""; spills = fills = 0; next }
+        /shader compiler: / {
+            line = $0; sub(/.*shader compiler: /, "", line)
+            if (line ~ /COORD/) next   # vc4: the binning copy of the vertex shader
+            n = split(line, w, /[ ,]+/)
+            inst = ""; for (i = 1; i < n; i++) if (w[i + 1] == "inst") inst = w[i]
+            for (i = 1; i < n; i++) {
+                if (w[i + 1] == "spills:fills") { split(w[i], sf, ":"); spills += sf[1]; fills += sf[2] }
+                if (w[i + 1] == "threads") extra = extra (extra == "" ? "" : "/") w[i] "thr"
+                if (w[i + 1] == "registers") extra = extra (extra == "" ? "" : "/") w[i] "reg"
+                if (w[i + 1] == "uniforms" && line !~ /VERTEX|vertex/) extra = extra (extra == "" ? "" : "/") w[i] "unif"
+            }
+            if (line ~ /^(VS|vertex|MESA_SHADER_VERTEX|vs)/ || line ~ /^VERT/) vs = inst; else fs = inst
+            next
+        }
+        /Failed to register allocate/ { status = "FAILED:register-allocation" }
+        /^program +[0-9]+ .*FAILED/ { status = "FAILED:" $0; gsub(/ /, "_", status) }
+        END { flush(); if (rc != 0 && rc != 1) printf "%-14s %-62s exit %s (see the log)\n", drv, "(run)", rc }
+    ' "$cache/$d.log"
+done > "$table"
+echo "device-shaders: one row per driver and program (instructions per stage as each compiler counts them):"
+cat "$table"
+case $mode in
+    update) cp "$table" "$expected"; echo "device-shaders: wrote $expected" ;;
+    check)
+        awk '
+            NR == FNR { key = $1 " " $2; want_vs[key] = $4; want_fs[key] = $6; want_sp[key] = $8; next }
+            {
+                key = $1 " " $2; st = $NF
+                if (st != "ok") { print "device-shaders: " key ": " st; bad = 1; next }
+                if (!(key in want_fs)) { print "device-shaders: " key ": new program (update the table)"; next }
+                if (want_vs[key] != "-" && $4 > want_vs[key] * 1.1) { print "device-shaders: " key ": VS " want_vs[key] " -> " $4 " instructions (over 10%)"; bad = 1 }
+                if (want_fs[key] != "-" && $6 > want_fs[key] * 1.1) { print "device-shaders: " key ": FS " want_fs[key] " -> " $6 " instructions (over 10%)"; bad = 1 }
+                if ($8 > want_sp[key]) { print "device-shaders: " key ": spills " want_sp[key] " -> " $8; bad = 1 }
+            }
+            END { exit bad }
+        ' "$expected" "$table" && echo "device-shaders: within the committed budget ($expected)"
+        ;;
+esac
