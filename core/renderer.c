@@ -78,6 +78,7 @@ struct jd_renderer {
     int sh_mid;           /* > 1: an intermediate reduction by sh_mid x sh_mid, so no pass sums over 64 texels */
     jd_mesh proxy, capture_proxy;
     GLuint mesh_vbo, mesh_ibo, proxy_vbo, proxy_ibo, cap_vbo, cap_ibo, quad_vbo;
+    GLuint project_vbo;   /* the SH projection's 6 x 27 rectangles, with their constants */
     GLuint tail_tex;
     timer_query tq;
     uint8_t *tail_px;     /* TAIL_SIZE RGBA texels, rebuilt when the material changes */
@@ -250,6 +251,8 @@ static jd_result upload_mesh(const jd_mesh *m, jd_vec3 c, float inv_r, GLuint *v
 
 static const char *const mesh_attribs[] = {"a_position", "a_normal", NULL};
 static const char *const quad_attribs[] = {"a_corner", NULL};
+static const char *const project_attribs[] = {"a_corner", "a_poly0", "a_poly1", "a_channel", "a_texel", NULL};
+enum { PROJECT_FLOATS = 17 }; /* per vertex of the projection's rectangles */
 
 /* The device's (or the profile's) limits hold for every program: uniform
  * vectors (GLSL ES packing: a matN takes N) and samplers. Checked here so a
@@ -405,7 +408,8 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
 
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_N %d\n#define JD_B %d\n#define JD_NB %d\n",
              r->highp, n, r->sh_block, nb);
-    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_project.frag", def, quad_attribs, &r->project_prog, err)))
+    if ((res = build(r, 4, "shaders_es2/sh_project.vert", "shaders_es2/sh_project.frag", def, project_attribs,
+                     &r->project_prog, err)))
         return res;
     r->proj_atlas = glGetUniformLocation(r->project_prog, "u_atlas");
     r->proj_texel = glGetUniformLocation(r->project_prog, "u_atlas_texel");
@@ -457,6 +461,8 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     }
     return JD_OK;
 }
+
+static jd_result build_projection_quads(jd_renderer *r, jd_arena *a, jd_error *err);
 
 jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer **out, jd_error *err)
 {
@@ -583,6 +589,7 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
         if ((res = make_target(r, &r->diff_lv[i], d->diffusion_size >> (i / 2), d->diffusion_size >> (i / 2), 0, 1,
                                "diffusion level", err)))
             goto fail;
+    if ((res = build_projection_quads(r, a, err))) goto fail;
     glBindFramebuffer(GL_FRAMEBUFFER, d->target_fbo);
     *out = r;
     return jd_renderer_resize(r, d->width, d->height, err);
@@ -598,8 +605,9 @@ void jd_renderer_destroy(jd_renderer *r)
                     &r->spread_tmp, &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->wide};
     for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++) free_target(ts[i]);
     for (int i = 0; i < DIFF_TEXTURES; i++) free_target(&r->diff_lv[i]);
-    GLuint bufs[] = {r->mesh_vbo, r->mesh_ibo, r->proxy_vbo, r->proxy_ibo, r->cap_vbo, r->cap_ibo, r->quad_vbo};
-    glDeleteBuffers(7, bufs);
+    GLuint bufs[] = {r->mesh_vbo, r->mesh_ibo, r->proxy_vbo, r->proxy_ibo, r->cap_vbo, r->cap_ibo, r->quad_vbo,
+                     r->project_vbo};
+    glDeleteBuffers(8, bufs);
     if (r->tail_tex) glDeleteTextures(1, &r->tail_tex);
     if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
@@ -851,6 +859,110 @@ static void draw_quad_into(const jd_renderer *r, const target *t)
     (void)r;
 }
 
+/* A polynomial in (1, fx, fy, fx^2, fy^2, fx fy). */
+typedef struct poly6 { float c[6]; } poly6;
+
+static poly6 poly_linear(float c0, float c1, float c2)
+{
+    poly6 p = {{c0, c1, c2, 0, 0, 0}};
+    return p;
+}
+
+static poly6 poly_mul(poly6 a, poly6 b) /* both linear */
+{
+    poly6 p = {{a.c[0] * b.c[0], a.c[0] * b.c[1] + a.c[1] * b.c[0], a.c[0] * b.c[2] + a.c[2] * b.c[0],
+                a.c[1] * b.c[1], a.c[2] * b.c[2], a.c[1] * b.c[2] + a.c[2] * b.c[1]}};
+    return p;
+}
+
+static poly6 poly_axpy(float s, poly6 a, float t, poly6 b)
+{
+    poly6 p;
+    for (int i = 0; i < 6; i++) p.c[i] = s * a.c[i] + t * b.c[i];
+    return p;
+}
+
+/* The real SH basis Y_k(w) on cube face `face`, w = (a + fx u + fy v) /
+ * sqrt(q): a polynomial over q^(d/2). Faces as the capture lays them out. */
+static poly6 sh_on_face(int face, int k, int *d)
+{
+    static const float frames[6][3][3] = {
+        {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}},  {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},
+        {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}}};
+    const float(*fr)[3] = frames[face];
+    poly6 x = poly_linear(fr[0][0], fr[1][0], fr[2][0]), y = poly_linear(fr[0][1], fr[1][1], fr[2][1]),
+          z = poly_linear(fr[0][2], fr[1][2], fr[2][2]);
+    poly6 q = {{1, 0, 0, 1, 1, 0}};
+    *d = k == 0 ? 0 : k < 4 ? 1 : 2;
+    switch (k) {
+    case 0: return poly_linear(0.282095f, 0, 0);
+    case 1: return poly_axpy(0.488603f, y, 0, y);
+    case 2: return poly_axpy(0.488603f, z, 0, z);
+    case 3: return poly_axpy(0.488603f, x, 0, x);
+    case 4: return poly_axpy(1.092548f, poly_mul(x, y), 0, q);
+    case 5: return poly_axpy(1.092548f, poly_mul(y, z), 0, q);
+    case 6: return poly_axpy(0.315392f * 3.0f, poly_mul(z, z), -0.315392f, q);
+    case 7: return poly_axpy(1.092548f, poly_mul(x, z), 0, q);
+    default: return poly_axpy(0.546274f, poly_mul(x, x), -0.546274f, poly_mul(y, y));
+    }
+}
+
+/* The projection target holds, per (face, coefficient row), an NB x NB
+ * rectangle of blocks; each rectangle is two triangles carrying its
+ * constants. Built once; the arena's top is scratch for the upload. */
+static jd_result build_projection_quads(jd_renderer *r, jd_arena *a, jd_error *err)
+{
+    int n = r->d.cube_size, nb = n / r->sh_block, B = r->sh_block;
+    float W = (float)(6 * nb), H = (float)(27 * nb);
+    size_t top = jd_arena_top_mark(a);
+    float *v = jd_arena_alloc_top(a, sizeof(float) * PROJECT_FLOATS * 6 * 6 * 27, 16, "SH projection rectangles", err);
+    if (!v) return JD_ERR_BUDGET;
+    float *o = v;
+    for (int face = 0; face < 6; face++)
+        for (int row = 0; row < 27; row++) {
+            int k = row / 3, ch = row % 3, d;
+            poly6 p = sh_on_face(face, k, &d);
+            /* dw's 4/N^2 * 6N^2/(4 pi), the block mean, the packing's range */
+            for (int i = 0; i < 6; i++) p.c[i] *= 6.0f / 3.14159265f / (float)(B * B) / 1.5f;
+            float fx = (float)(face % 3 * n), fy = (float)(face / 3 * n);
+            float x0 = (float)(face * nb), y0 = (float)(row * nb);
+            static const int corners[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0, 1}, {1, 0}, {1, 1}};
+            for (int c = 0; c < 6; c++) {
+                int cx = corners[c][0], cy = corners[c][1];
+                float attr[PROJECT_FLOATS] = {
+                    (x0 + (float)(cx * nb)) / W * 2.0f - 1.0f, (y0 + (float)(cy * nb)) / H * 2.0f - 1.0f,
+                    p.c[0], p.c[1], p.c[2], p.c[3], p.c[4], p.c[5], d == 1 ? 1.0f : 0.0f, d == 2 ? 1.0f : 0.0f,
+                    ch == 0 ? 1.0f : 0.0f, ch == 1 ? 1.0f : 0.0f, ch == 2 ? 1.0f : 0.0f,
+                    /* the block's first sample, at pixel centres: corner + 0.5 - B/2 + n across */
+                    fx + 0.5f - 0.5f * (float)B + (float)(cx * n), fy + 0.5f - 0.5f * (float)B + (float)(cy * n), fx, fy};
+                memcpy(o, attr, sizeof attr);
+                o += PROJECT_FLOATS;
+            }
+        }
+    glGenBuffers(1, &r->project_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, r->project_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)(o - v) * sizeof(float)), v, GL_STATIC_DRAW);
+    jd_arena_top_reset(a, top);
+    return glGetError() == GL_NO_ERROR ? JD_OK : jd_fail(err, JD_ERR_GL, "SH projection upload failed");
+}
+
+static void draw_projection(const jd_renderer *r)
+{
+    glBindBuffer(GL_ARRAY_BUFFER, r->project_vbo);
+    static const int sizes[5] = {2, 4, 4, 3, 4};
+    size_t at = 0;
+    for (GLuint i = 0; i < 5; i++) {
+        glEnableVertexAttribArray(i);
+        glVertexAttribPointer(i, sizes[i], GL_FLOAT, GL_FALSE, PROJECT_FLOATS * sizeof(float),
+                              (const void *)(at * sizeof(float)));
+        at += (size_t)sizes[i];
+    }
+    use_target(&r->sh1);
+    glDrawArrays(GL_TRIANGLES, 0, 6 * 6 * 27);
+    for (GLuint i = 2; i < 5; i++) glDisableVertexAttribArray(i);
+    bind_quad(r);
+}
+
 static jd_result pass_sh(jd_renderer *r, frame_params *f, jd_error *err)
 {
     glDisable(GL_DEPTH_TEST);
@@ -861,7 +973,7 @@ static jd_result pass_sh(jd_renderer *r, frame_params *f, jd_error *err)
     glUniform1i(r->proj_atlas, 0);
     glUniform2f(r->proj_texel, 1.0f / r->atlas.tw, 1.0f / r->atlas.th);
     glBindTexture(GL_TEXTURE_2D, r->atlas.tex);
-    draw_quad_into(r, &r->sh1);
+    draw_projection(r);
     const target *src = &r->sh1;
     if (r->sh_mid > 1) {
         glUseProgram(r->reduce_mid_prog);

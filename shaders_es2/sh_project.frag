@@ -3,56 +3,40 @@
 // Y = row * NB + block row, row = coefficient * 3 + channel. Each pixel
 // averages L * Y_k * dw over a BxB block of the capture atlas, with dw scaled
 // by 6N^2/(4 pi) so values stay within +-1.5, and packs the mean / 1.5.
+//
+// On a face, the direction is w = (a + fx u + fy v) / sqrt(q), q = 1 + fx^2
+// + fy^2, so every Y_k is a quadratic polynomial in (fx, fy) over q^(d/2),
+// d = 0, 1 or 2; dw is 4/N^2 / q^(3/2). The rectangle's attributes carry
+// the polynomial and d (poly1.zw = (1, 0) for d = 1, (0, 1) for d = 2);
+// the polynomial already holds 6/pi (4/N^2 * 6N^2/(4 pi)), 1/(B*B) for the
+// mean and 1/1.5 for the packing.
 uniform sampler2D u_atlas;     // 3N x 2N used, faces +X -X +Y / -Y +Z -Z
 uniform vec2 u_atlas_texel;    // 1 / the atlas texture's (power-of-two) size
-varying vec2 v_uv;
+varying vec4 v_poly0;
+varying vec4 v_poly1;
+varying vec3 v_channel;
+varying vec4 v_texel;
 // JD_N (face size), JD_B (block), JD_NB = JD_N / JD_B come as defines.
-
-void face_frame(float f, out vec3 a, out vec3 u, out vec3 v)
-{
-    if (f < 0.5)      { a = vec3(1.0, 0.0, 0.0);  u = vec3(0.0, 0.0, -1.0); v = vec3(0.0, 1.0, 0.0); }
-    else if (f < 1.5) { a = vec3(-1.0, 0.0, 0.0); u = vec3(0.0, 0.0, 1.0);  v = vec3(0.0, 1.0, 0.0); }
-    else if (f < 2.5) { a = vec3(0.0, 1.0, 0.0);  u = vec3(1.0, 0.0, 0.0);  v = vec3(0.0, 0.0, -1.0); }
-    else if (f < 3.5) { a = vec3(0.0, -1.0, 0.0); u = vec3(1.0, 0.0, 0.0);  v = vec3(0.0, 0.0, 1.0); }
-    else if (f < 4.5) { a = vec3(0.0, 0.0, 1.0);  u = vec3(1.0, 0.0, 0.0);  v = vec3(0.0, 1.0, 0.0); }
-    else              { a = vec3(0.0, 0.0, -1.0); u = vec3(-1.0, 0.0, 0.0); v = vec3(0.0, 1.0, 0.0); }
-}
 
 void main()
 {
-    vec2 px = floor(gl_FragCoord.xy);
-    float nb = float(JD_NB), n = float(JD_N);
-    float face = floor(px.x / nb);
-    float bx = px.x - face * nb;
-    float row = floor(px.y / nb);
-    float by = px.y - row * nb;
-    float k = floor(row / 3.0);
-    float ch = row - 3.0 * k;
-    vec3 sel = vec3(ch < 0.5 ? 1.0 : 0.0, abs(ch - 1.0) < 0.5 ? 1.0 : 0.0, ch > 1.5 ? 1.0 : 0.0);
-    vec4 ka = vec4(k < 0.5 ? 1.0 : 0.0, abs(k - 1.0) < 0.5 ? 1.0 : 0.0, abs(k - 2.0) < 0.5 ? 1.0 : 0.0, abs(k - 3.0) < 0.5 ? 1.0 : 0.0);
-    vec4 kb = vec4(abs(k - 4.0) < 0.5 ? 1.0 : 0.0, abs(k - 5.0) < 0.5 ? 1.0 : 0.0, abs(k - 6.0) < 0.5 ? 1.0 : 0.0, abs(k - 7.0) < 0.5 ? 1.0 : 0.0);
-    float kc = k > 7.5 ? 1.0 : 0.0;
-    vec3 a, u, v;
-    face_frame(face, a, u, v);
-    vec2 origin = vec2(mod(face, 3.0) * n, floor(face / 3.0) * n) + vec2(bx, by) * float(JD_B);
-    float scale = 6.0 / 3.14159265; // 4/N^2 * 6N^2/(4 pi), N folded in below
+    float step = 2.0 / float(JD_N);
+    vec2 t0 = floor(v_texel.xy) + 0.5;          // snapped: varyings may be interpolated in fp16
+    vec2 f0 = (t0 - v_texel.zw) * step - 1.0;   // the first sample's face coordinates
     float sum = 0.0;
     for (int j = 0; j < JD_B; j++) {
         for (int i = 0; i < JD_B; i++) {
-            vec2 t = origin + vec2(float(i), float(j)) + 0.5;
-            vec2 fuv = (t - vec2(mod(face, 3.0) * n, floor(face / 3.0) * n)) / n * 2.0 - 1.0;
-            float q = 1.0 + dot(fuv, fuv);
-            float dw = scale / (q * sqrt(q));
-            vec3 w = normalize(a + fuv.x * u + fuv.y * v);
-            vec4 ya = vec4(0.282095, 0.488603 * w.y, 0.488603 * w.z, 0.488603 * w.x);
-            vec4 yb = vec4(1.092548 * w.x * w.y, 1.092548 * w.y * w.z, 0.315392 * (3.0 * w.z * w.z - 1.0), 1.092548 * w.x * w.z);
-            float yc = 0.546274 * (w.x * w.x - w.y * w.y);
-            float y = dot(ya, ka) + dot(yb, kb) + yc * kc;
-            float l = dot(texture2D(u_atlas, t * u_atlas_texel).rgb, sel);
+            vec2 o = vec2(float(i), float(j));
+            vec2 f = f0 + o * step;
+            float inv = 1.0 / (1.0 + dot(f, f));
+            float rs = sqrt(inv);
+            float y = v_poly0.x + dot(v_poly0.yz, f) + v_poly0.w * f.x * f.x + (v_poly1.x * f.y + v_poly1.y * f.x) * f.y;
+            float power = inv * rs * (1.0 + v_poly1.z * (rs - 1.0) + v_poly1.w * (inv - 1.0));
+            float l = dot(texture2D(u_atlas, (t0 + o) * u_atlas_texel).rgb, v_channel);
             // Accumulate the mean directly: a raw sum of B*B terms would lose
             // low bits in fp16.
-            sum += l * y * dw / float(JD_B * JD_B);
+            sum += l * y * power;
         }
     }
-    gl_FragColor = jd_pack_signed(sum / 1.5);
+    gl_FragColor = jd_pack_signed(sum);
 }
