@@ -42,6 +42,8 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
     jd_alloc_count_start();
     static double t_log;
     if (!t_log) t_log = jd_now_ms();
+    jd_frame_stats fs;
+    double switches = 0, readbacks = 0, fragments = 0, bytes = 0;
     for (int i = 0; i < o->frames; i++) {
         sc.light_azimuth = o->scene.light_azimuth + 360.0f * (float)i / 120.0f;
         if (o->cycle_materials) { /* the diffusion refit and every uniform path, in the loop */
@@ -51,10 +53,14 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
             sc.eta = m->eta;
         }
         double t0 = jd_now_ms();
-        if (jd_renderer_frame(s->renderer, &sc, NULL, &err)) { jd_alloc_count_stop(); goto fail; }
+        if (jd_renderer_frame(s->renderer, &sc, &fs, &err)) { jd_alloc_count_stop(); goto fail; }
         jd_renderer_finish(s->renderer);
         double t1 = jd_now_ms();
         times[i] = t1 - t0;
+        switches += fs.target_switches;
+        readbacks += fs.readbacks;
+        fragments += fs.fragments;
+        bytes += fs.target_bytes_written;
         if (o->log_every > 0 && t1 - t_log >= o->log_every * 1000.0) {
             jd_health h;
             jd_health_sample(&h);
@@ -84,9 +90,27 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
     for (int i = 0; i < o->frames; i++) sorted_sum += times[i];
     qsort(times, (size_t)o->frames, sizeof(double), cmp_double);
     double med = percentile(times, o->frames, 0.5), p95 = percentile(times, o->frames, 0.95);
+    /* The same mode with the light and the camera still (a kiosk between
+     * animations): the light-space passes and the spread are reused. */
+    int still = o->frames < 60 ? o->frames : 60;
+    double still_switches = 0, still_readbacks = 0;
+    sc.light_azimuth = o->scene.light_azimuth;
+    for (int i = 0; i < still; i++) {
+        double t0 = jd_now_ms();
+        if (jd_renderer_frame(s->renderer, &sc, &fs, &err)) goto fail;
+        jd_renderer_finish(s->renderer);
+        times[i] = jd_now_ms() - t0;
+        if (i) { still_switches += fs.target_switches; still_readbacks += fs.readbacks; }
+    }
+    qsort(times, (size_t)still, sizeof(double), cmp_double);
+    double still_med = percentile(times, still, 0.5);
     printf("%s    \"%s\": {\"frame_ms_median\": %.3f, \"frame_ms_p95\": %.3f, \"frame_ms_mean\": %.3f, \"fps\": %.1f, "
-           "\"heap_allocations_in_loop\": %lu, \"pass_ms_mean\": {",
-           first ? "" : ",\n", jd_mode_name(mode), med, p95, sorted_sum / o->frames, 1000.0 / med, allocs);
+           "\"heap_allocations_in_loop\": %lu, \"readbacks_per_frame\": %.2f, \"target_switches_per_frame\": %.2f, "
+           "\"fragments_per_frame\": %.0f, \"target_bytes_written_per_frame\": %.0f, \"still_frame_ms_median\": %.3f, "
+           "\"still_readbacks_per_frame\": %.2f, \"still_target_switches_per_frame\": %.2f, \"pass_ms_mean\": {",
+           first ? "" : ",\n", jd_mode_name(mode), med, p95, sorted_sum / o->frames, 1000.0 / med, allocs,
+           readbacks / o->frames, switches / o->frames, fragments / o->frames, bytes / o->frames, still_med,
+           still > 1 ? still_readbacks / (still - 1) : 0.0, still > 1 ? still_switches / (still - 1) : 0.0);
     for (int p = 0; p < JD_PASS_COUNT; p++)
         printf("%s\"%s\": %.3f", p ? ", " : "", jd_pass_name(p), pass[p]);
     printf("}");

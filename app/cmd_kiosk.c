@@ -1,5 +1,6 @@
 /* jade kiosk: fullscreen without a desktop, the light orbiting, until a
  * signal or --frames N; then frame-time statistics. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -62,9 +63,12 @@ int jd_cmd_kiosk(int argc, char **argv)
         while (jd_platform_poll(s.platform, &ev))
             if (ev.type == JD_EVENT_QUIT) quit = 1;
         if (quit) break;
-        /* One orbit every 12 s, by the clock: the motion stays smooth when
-         * frames are dropped. */
-        sc.light_azimuth = o.scene.light_azimuth + (float)((jd_now_ms() - t_start) * 0.03);
+        /* By the clock, so the motion stays smooth when frames are dropped;
+         * wrapped, so float precision holds over months. A still light
+         * keeps the scene unchanged and the renderer reuses its work. */
+        if (o.light_speed != 0.0f)
+            sc.light_azimuth = o.scene.light_azimuth +
+                               (float)fmod((jd_now_ms() - t_start) / 1000.0 * (double)o.light_speed, 360.0);
         if (jd_renderer_frame(s.renderer, &sc, NULL, &err) || jd_platform_present(s.platform, &err)) {
             fprintf(stderr, "jade kiosk: %s\n", err.msg);
             rc = 1;

@@ -81,6 +81,8 @@ static const opt table[] = {
      "A          auto|off|post: edges by the target's multisampling, else a pass after the frame [auto]"},
     {"--fragment-thickness", T_FLAG, OFF(rdesc.fragment_thickness), 0, 0, R | B, "           thickness per fragment, not per vertex (coarse meshes)"},
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
+    {"--light-speed", T_FLOAT, OFF(light_speed), -3600, 3600, K,
+     "DEG/S      the light's orbit [30: once every 12 s]; 0: still, and the light-space passes are reused"},
     {"--log-every", T_FLOAT, OFF(log_every), 0, 86400, K | B,
      "S          a health line every S seconds: frames, frame times, missed vblanks, memory, fds, GL names [0: off]"},
     {"--cycle-materials", T_FLAG, OFF(cycle_materials), 0, 0, B, "           bench: a different material every 10 frames (soak tests)"},
@@ -103,6 +105,7 @@ void jd_options_defaults(jd_options *o)
     o->material = "marble";
     jd_scene_defaults(&o->scene, jd_material_find("marble"));
     o->scene.eta = 0; /* 0 until --eta or the material sets it */
+    o->light_speed = 30.0f;
 }
 
 void jd_options_help(int command, const char *cmdname, const char *summary)

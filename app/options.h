@@ -33,6 +33,7 @@ typedef struct jd_options {
     float log_every;     /* kiosk, bench: seconds between health lines, 0 = none */
     int cycle_materials; /* bench */
     int compile_only;    /* info --compile */
+    float light_speed;   /* kiosk: degrees per second */
     jd_load_desc load;
     jd_renderer_desc rdesc;
     jd_scene scene;

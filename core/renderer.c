@@ -105,6 +105,16 @@ struct jd_renderer {
     target wide;          /* full's levels summed at half resolution (without vertex diffusion) */
     size_t target_bytes;
     float box_half;
+    /* What a tiler would pay this frame: render-target switches (each one
+     * writes the tile memory out), pixels shaded (by target area), bytes
+     * written to render targets, read-backs. */
+    int n_switches, n_readbacks;
+    double n_fragments, n_bytes;
+    /* The inputs of the light-space passes and of the screen-space spread
+     * at the last frame, so a still scene reuses their results. */
+    float light_key[16], view_key[24];
+    int light_key_valid, view_key_valid;
+    jd_sh9 last_sh;
 };
 
 const char *jd_mode_name(jd_mode m)
@@ -799,8 +809,19 @@ static void bind_quad(const jd_renderer *r)
 }
 
 /* The scissor keeps clears to the used corner of a power-of-two target. */
+static jd_renderer *counting; /* the renderer whose frame is being drawn, for the counters */
+
+static void count_target(int w, int h)
+{
+    if (!counting) return;
+    counting->n_switches++;
+    counting->n_fragments += (double)w * h;
+    counting->n_bytes += (double)w * h * 4.0;
+}
+
 static void use_target(const target *t)
 {
+    count_target(t->w, t->h);
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
     glViewport(0, 0, t->w, t->h);
     glScissor(0, 0, t->w, t->h);
@@ -997,6 +1018,7 @@ static jd_result pass_sh(jd_renderer *r, frame_params *f, jd_error *err)
     uint8_t px[27 * 4];
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, 1, 27, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    r->n_readbacks++;
     if (glGetError() != GL_NO_ERROR) return jd_fail(err, JD_ERR_GL, "reading back the SH coefficients failed");
     jd_sh_decode(px, r->highp, &f->sh);
     return JD_OK;
@@ -1192,6 +1214,7 @@ static void pass_wide(jd_renderer *r, const frame_params *f)
 
 static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
+    count_target(r->d.width, r->d.height);
     glBindFramebuffer(GL_FRAMEBUFFER, r->post_aa ? r->scene.fbo : r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
     glScissor(0, 0, r->d.width, r->d.height);
@@ -1211,6 +1234,7 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
  * more) is filtered; the rest is background, cleared. */
 static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
+    count_target(r->d.width, r->d.height);
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
     glScissor(0, 0, r->d.width, r->d.height);
@@ -1295,30 +1319,58 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     /* Packed values must reach RGBA8 bit-exact: GL enables dithering by default. */
     glDisable(GL_DITHER);
     glEnable(GL_SCISSOR_TEST);
+    /* A still scene (the light, the material and the mode as last frame)
+     * reuses the light-space work: light depth, diffusion, capture and SH;
+     * the spread is screen-space and also needs the camera still. */
+    float lk[16] = {(float)s->mode, s->light_azimuth, s->light_elevation, s->light_intensity, s->sigma_s[0],
+                    s->sigma_s[1], s->sigma_s[2], s->sigma_a[0], s->sigma_a[1], s->sigma_a[2], s->eta, s->density,
+                    s->mm_per_unit, s->gain, s->specular, s->ambient};
+    float vk[24];
+    memcpy(vk, lk, sizeof lk);
+    float vk_rest[8] = {s->cam_azimuth, s->cam_elevation, s->cam_distance, s->fov_deg, (float)r->d.width,
+                        (float)r->d.height, s->exposure, 0};
+    memcpy(vk + 16, vk_rest, sizeof vk_rest);
+    int light_still = r->light_key_valid && !memcmp(lk, r->light_key, sizeof lk);
+    int view_still = light_still && r->view_key_valid && !memcmp(vk, r->view_key, sizeof vk);
+    r->light_key_valid = r->view_key_valid = 0; /* set again once this frame has succeeded */
+    counting = r;
+    r->n_switches = r->n_readbacks = 0;
+    r->n_fragments = r->n_bytes = 0;
     /* Every mode shadows its direct light with the light-depth map. */
-    gpu_begin(r, stats, JD_PASS_LIGHT_DEPTH);
-    pass_light_depth(r, &f);
-    lap(r, stats, JD_PASS_LIGHT_DEPTH, &t);
+    if (!light_still) {
+        gpu_begin(r, stats, JD_PASS_LIGHT_DEPTH);
+        pass_light_depth(r, &f);
+        lap(r, stats, JD_PASS_LIGHT_DEPTH, &t);
+    }
     if (s->mode == JD_MODE_FULL) {
         update_fit(r, s, &f);
-        gpu_begin(r, stats, JD_PASS_DIFFUSION);
-        pass_diffusion(r, &f);
-        if (!r->vertex_diffusion) pass_wide(r, &f);
-        lap(r, stats, JD_PASS_DIFFUSION, &t);
+        if (!light_still) {
+            gpu_begin(r, stats, JD_PASS_DIFFUSION);
+            pass_diffusion(r, &f);
+            lap(r, stats, JD_PASS_DIFFUSION, &t);
+        }
+        /* The half-resolution sum is in screen space. */
+        if (!r->vertex_diffusion && !view_still) pass_wide(r, &f);
     }
     if (s->mode == JD_MODE_SINGLE || s->mode == JD_MODE_DUAL) {
         update_tail(r, s, &f);
-        gpu_begin(r, stats, JD_PASS_CAPTURE);
-        pass_capture(r, &f);
-        lap(r, stats, JD_PASS_CAPTURE, &t);
-        gpu_begin(r, stats, JD_PASS_SH);
-        jd_result res = pass_sh(r, &f, err);
-        if (res) {
-            if (r->tq.ok && r->tq.used[JD_PASS_SH]) r->tq.end(GL_TIME_ELAPSED_EXT);
-            return res;
+        if (light_still) {
+            f.sh = r->last_sh;
+        } else {
+            gpu_begin(r, stats, JD_PASS_CAPTURE);
+            pass_capture(r, &f);
+            lap(r, stats, JD_PASS_CAPTURE, &t);
+            gpu_begin(r, stats, JD_PASS_SH);
+            jd_result res = pass_sh(r, &f, err);
+            if (res) {
+                if (r->tq.ok && r->tq.used[JD_PASS_SH]) r->tq.end(GL_TIME_ELAPSED_EXT);
+                counting = NULL;
+                return res;
+            }
+            r->last_sh = f.sh;
+            lap(r, stats, JD_PASS_SH, &t);
         }
-        lap(r, stats, JD_PASS_SH, &t);
-        if (s->mode == JD_MODE_DUAL) {
+        if (s->mode == JD_MODE_DUAL && !view_still) {
             gpu_begin(r, stats, JD_PASS_SPREAD);
             pass_spread(r, &f);
             lap(r, stats, JD_PASS_SPREAD, &t);
@@ -1329,12 +1381,21 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     if (r->post_aa) pass_antialias(r, s, &f);
     lap(r, stats, JD_PASS_MAIN, &t);
     gpu_collect(r, stats);
+    counting = NULL;
     if (stats) {
         memcpy(stats->sh, f.sh.c, sizeof stats->sh);
         stats->blur_sigma_px = f.blur_sigma_px;
+        stats->target_switches = r->n_switches;
+        stats->readbacks = r->n_readbacks;
+        stats->fragments = r->n_fragments;
+        stats->target_bytes_written = r->n_bytes;
+        stats->reused = light_still + view_still;
     }
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) return jd_fail(err, JD_ERR_GL, "GL error 0x%x during the %s frame", e, jd_mode_name(s->mode));
+    memcpy(r->light_key, lk, sizeof lk);
+    memcpy(r->view_key, vk, sizeof vk);
+    r->light_key_valid = r->view_key_valid = 1;
     return JD_OK;
 }
 

@@ -88,6 +88,13 @@ typedef struct jd_frame_stats {
     int gpu_valid;
     float sh[9][3];                /* coefficients used this frame */
     float blur_sigma_px;           /* spread width in low-res pixels */
+    /* What the frame costs a tile-based GPU, counted by the renderer:
+     * render-target switches (each writes the tile memory out), read-backs
+     * (each waits for everything drawn so far), pixels covered by the
+     * passes (target areas) and bytes written to render targets (colour). */
+    int target_switches, readbacks;
+    double fragments, target_bytes_written;
+    int reused; /* 0; 1: the light-space passes reused (light and material still); 2: the spread too */
 } jd_frame_stats;
 
 typedef struct jd_renderer jd_renderer;

@@ -137,6 +137,34 @@ int main(int argc, char **argv)
         jd_renderer_destroy(r);
     }
     jd_arena_reset(&a, mark);
+    /* A still scene reuses the light-space passes (and, with the camera
+     * still, the spread): the picture must be the one a full frame gives,
+     * with no read-back and fewer target switches. */
+    jd_arena_reset(&a, mark);
+    r = make(&a, &mesh, &caps, p, JD_PRECISION_AUTO, 64);
+    if (r) {
+        static uint8_t fresh[64 * 64 * 4], reused[64 * 64 * 4];
+        for (int m = 0; m < JD_MODE_COUNT; m++) {
+            jd_scene s;
+            jd_scene_defaults(&s, NULL);
+            s.mode = (jd_mode)m;
+            jd_frame_stats st1, st2;
+            s.light_azimuth = 40;
+            jd_renderer_frame(r, &s, NULL, &err);
+            s.light_azimuth = 100; /* a frame that must recompute */
+            int ok = jd_renderer_frame(r, &s, &st1, &err) == JD_OK && jd_platform_read_rgba(p, fresh, &err) == JD_OK &&
+                     jd_renderer_frame(r, &s, &st2, &err) == JD_OK && jd_platform_read_rgba(p, reused, &err) == JD_OK;
+            CHECK(ok && !memcmp(fresh, reused, sizeof fresh) && st1.reused == 0 && st2.reused == 2,
+                  "%s: a still frame reuses its passes (reused %d -> %d) and gives the same picture", jd_mode_name(s.mode),
+                  st1.reused, st2.reused);
+            CHECK((st2.readbacks == 0 && st2.target_switches < st1.target_switches) || m == JD_MODE_NONE,
+                  "%s: still: %d read-backs, %d target switches (moving: %d, %d)", jd_mode_name(s.mode), st2.readbacks,
+                  st2.target_switches, st1.readbacks, st1.target_switches);
+            printf("%s: moving light %d read-backs, %d target switches; still %d, %d\n", jd_mode_name(s.mode),
+                   st1.readbacks, st1.target_switches, st2.readbacks, st2.target_switches);
+        }
+        jd_renderer_destroy(r);
+    }
     /* Small register files (VideoCore IV, Mali-400) project 2x2 blocks and
      * reduce once more: the same coefficients. */
     jd_arena_reset(&a, mark);

@@ -1,0 +1,34 @@
+#!/bin/sh
+# The calls that stall a tile-based GPU, counted from outside the process
+# (tests/gl_count.c preloaded): in none and full no glReadPixels and no
+# glFinish at all, on the generic device and under the vc4 and mali400
+# profiles; single and dual read their 27 SH values back once per frame
+# while the light moves, and once in all with the light still (the
+# renderer reuses the light-space passes). `kiosk` itself never finishes.
+jade=$1 counter=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+if ldd "$jade" | grep -q libasan; then
+    echo "skipped: a sanitized build cannot take a preloaded library first"
+    exit 77
+fi
+pass=0 fail=0
+count() { # MODE PROFILE LIGHT_SPEED -> "readpixels finishes"
+    JD_GL_COUNT_OUT=$tmp/out LD_PRELOAD=$counter "$jade" kiosk --platform headless --size 64x64 --frames 20 \
+        --mode "$1" ${2:+--profile "$2"} --light-speed "$3" >/dev/null 2>"$tmp/err" || { cat "$tmp/err"; echo "x x"; return; }
+    echo "$(sed -n 's/^glReadPixels //p' "$tmp/out") $(sed -n 's/^glFinish //p' "$tmp/out")"
+}
+check() { # NAME GOT WANT
+    if [ "$2" = "$3" ]; then pass=$((pass + 1)); echo "ok   $1: read-backs, glFinish = $2"
+    else fail=$((fail + 1)); echo "FAIL $1: read-backs, glFinish = $2 (want $3)"; fi
+}
+for prof in "" vc4 mali400; do
+    p=${prof:-generic}
+    check "none, $p, 20 frames" "$(count none "$prof" 30)" "0 0"
+    check "full, $p, 20 frames" "$(count full "$prof" 30)" "0 0"
+    check "dual, $p, 20 frames, light moving" "$(count dual "$prof" 30)" "20 0"
+    check "dual, $p, 20 frames, light still" "$(count dual "$prof" 0)" "1 0"
+    check "single, $p, 20 frames, light still" "$(count single "$prof" 0)" "1 0"
+done
+echo "frame_stalls: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
