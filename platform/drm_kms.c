@@ -313,7 +313,7 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
     /* A display server holding DRM master makes every modeset fail: say so
      * now rather than at the first frame. */
     if (!drmIsMaster(p->fd) && drmSetMaster(p->fd) != 0) {
-        char why[300];
+        char why[700];
         jd_drm_master_message(p->device, errno, why, sizeof why);
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s", why));
     }
@@ -464,24 +464,38 @@ static void drm_stats(const void *impl, jd_present_stats *st)
 
 static const char *drm_describe(const void *impl) { return ((const drm_platform *)impl)->describe; }
 
+/* Shutdown, SIGTERM's included: the display goes back first, while jade's
+ * last frame is still on it (no black gap, one modeset); then everything
+ * is torn down in the reverse order of its creation, each buffer released
+ * while the surface that owns it still exists. */
 static void drm_close(void *impl)
 {
     drm_platform *p = impl;
+    if (p->flip_pending) { /* restoring under a pending flip fails with EBUSY */
+        jd_error e;
+        wait_flip(p, &e);
+        p->flip_pending = 0;
+    }
+    if (p->saved_crtc && p->modeset_done) {
+        drmModeCrtc *c = p->saved_crtc;
+        /* A display that was off (no mode) is switched off again. */
+        int rc = c->mode_valid
+                     ? drmModeSetCrtc(p->fd, c->crtc_id, c->buffer_id, c->x, c->y, &p->connector_id, 1, &c->mode)
+                     : drmModeSetCrtc(p->fd, c->crtc_id, 0, 0, 0, NULL, 0, NULL);
+        if (rc != 0)
+            fprintf(stderr, "jade: %s: could not give %s back as it was: %s\n", p->device, p->connector_name,
+                    strerror(errno));
+    }
+    if (p->saved_crtc) drmModeFreeCrtc(p->saved_crtc);
+    if (p->shown && p->gbm_surface) gbm_surface_release_buffer(p->gbm_surface, p->shown);
     if (p->edpy) {
         eglMakeCurrent(p->edpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (p->surf) eglDestroySurface(p->edpy, p->surf);
         if (p->ctx) eglDestroyContext(p->edpy, p->ctx);
         eglTerminate(p->edpy);
     }
-    if (p->saved_crtc) {
-        /* Give the display back as it was. */
-        drmModeCrtc *c = p->saved_crtc;
-        drmModeSetCrtc(p->fd, c->crtc_id, c->buffer_id, c->x, c->y, &p->connector_id, 1, c->mode_valid ? &c->mode : NULL);
-        drmModeFreeCrtc(c);
-    }
+    if (p->gbm_surface) gbm_surface_destroy(p->gbm_surface); /* its buffers' framebuffers go with them */
     if (p->mode_blob) drmModeDestroyPropertyBlob(p->fd, p->mode_blob);
-    if (p->shown && p->gbm_surface) gbm_surface_release_buffer(p->gbm_surface, p->shown);
-    if (p->gbm_surface) gbm_surface_destroy(p->gbm_surface);
     if (p->gbm) gbm_device_destroy(p->gbm);
     if (p->fd >= 0) {
         drmDropMaster(p->fd);

@@ -1,8 +1,12 @@
 #include "drm_select.h"
 
-#include <stdio.h>
+#include <dirent.h>
 #include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 /* The kernel's names (drm_connector.c), by DRM_MODE_CONNECTOR_* value. */
 static const char *const type_names[] = {
@@ -64,11 +68,59 @@ int jd_drm_pick_mode(const jd_drm_mode *m, int n, int w, int h, int hz)
     return best;
 }
 
+int jd_drm_holders(const char *proc_root, const char *device, int self_pid, char *out, size_t cap)
+{
+    struct stat dev;
+    out[0] = 0;
+    if (stat(device, &dev) != 0 || !S_ISCHR(dev.st_mode)) return 0;
+    DIR *procs = opendir(proc_root);
+    if (!procs) return 0;
+    int found = 0;
+    size_t at = 0;
+    struct dirent *e;
+    while ((e = readdir(procs)) != NULL) {
+        char *end;
+        long pid = strtol(e->d_name, &end, 10);
+        if (*end || pid <= 0 || pid == self_pid) continue;
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s/fd", proc_root, e->d_name);
+        DIR *fds = opendir(path);
+        if (!fds) continue; /* another user's process: not ours to see */
+        struct dirent *f;
+        int holds = 0;
+        while (!holds && (f = readdir(fds)) != NULL) {
+            struct stat st;
+            char fd_path[512 + 256 + 2]; /* path and a d_name */
+            snprintf(fd_path, sizeof fd_path, "%s/%s", path, f->d_name);
+            holds = f->d_name[0] != '.' && stat(fd_path, &st) == 0 && S_ISCHR(st.st_mode) && st.st_rdev == dev.st_rdev;
+        }
+        closedir(fds);
+        if (!holds) continue;
+        char comm[64] = "?";
+        snprintf(path, sizeof path, "%s/%s/comm", proc_root, e->d_name);
+        FILE *cf = fopen(path, "r");
+        if (cf) {
+            if (fgets(comm, sizeof comm, cf)) comm[strcspn(comm, "\n")] = 0;
+            fclose(cf);
+        }
+        if (at < cap) at += (size_t)snprintf(out + at, cap - at, "%s%s (pid %ld)", found ? ", " : "", comm, pid);
+        found++;
+    }
+    closedir(procs);
+    return found;
+}
+
 void jd_drm_master_message(const char *device, int errnum, char *out, size_t cap)
 {
-    snprintf(out, cap,
-             "%s: cannot become DRM master (%s): %s", device, strerror(errnum),
-             errnum == EACCES || errnum == EPERM || errnum == EBUSY
-                 ? "a display server (X11, Wayland) owns the display; stop it or run from a free VT (systemd unit)"
-                 : "the display is held by another process");
+    char holders[256];
+    int n = jd_drm_holders("/proc", device, (int)getpid(), holders, sizeof holders);
+    if (n > 0)
+        snprintf(out, cap, "%s: cannot become DRM master (%s): the display is held by %s; stop it or run from a free VT",
+                 device, strerror(errnum), holders);
+    else
+        snprintf(out, cap,
+                 "%s: cannot become DRM master (%s): %s", device, strerror(errnum),
+                 errnum == EACCES || errnum == EPERM || errnum == EBUSY
+                     ? "a display server (X11, Wayland) owns the display; stop it or run from a free VT (systemd unit)"
+                     : "the display is held by another process");
 }

@@ -29,7 +29,12 @@ int jd_drm_parse_mode(const char *s, int *w, int *h, int *hz);
  * mode, else the largest (then the fastest). -1 when none matches. */
 int jd_drm_pick_mode(const jd_drm_mode *m, int n, int w, int h, int hz);
 
-/* The error for a failed drmSetMaster: who holds the display and what to do. */
+/* The processes under proc_root (normally /proc) other than self_pid that
+ * have `device` open, as "Xorg (pid 812), jade (pid 901)"; their number.
+ * Only what this user may see. */
+int jd_drm_holders(const char *proc_root, const char *device, int self_pid, char *out, size_t cap);
+/* The error for a failed drmSetMaster: who holds the display (by name where
+ * /proc says) and what to do. */
 void jd_drm_master_message(const char *device, int errnum, char *out, size_t cap);
 
 #endif

@@ -128,7 +128,11 @@ void jd_quit_on_signals(void)
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
+    /* Not reset after the first: a second SIGTERM or SIGINT while the kiosk
+     * gives the display back only sets the flag again, and never kills it
+     * half-way through the restore. Interrupted calls resume. */
     sa.sa_handler = on_signal;
+    sa.sa_flags = SA_RESTART;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);

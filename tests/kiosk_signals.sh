@@ -5,31 +5,37 @@
 # is installed). A kiosk that keeps running is killed after 10 s and fails.
 jade=$1 out=$2
 pass=0 fail=0
-run() { # run PLATFORM SIGNAL [env...]
-    plat=$1 sig=$2
+run() { # run PLATFORM SIGNAL[+SIGNAL: a second one right after] [env...]
+    plat=$1 sig=${2%+*} again=
+    case $2 in *+*) again=${2#*+} ;; esac
     shift 2
-    env "$@" "$jade" kiosk --platform "$plat" --size 160x120 > "$out/kiosk_$plat.$sig.txt" 2>&1 &
+    env "$@" "$jade" kiosk --platform "$plat" --size 160x120 > "$out/kiosk_$plat.$sig$again.txt" 2>&1 &
     pid=$!
     # Until it has drawn frames: start-up (decode, shaders) is not the point.
     i=0
-    while [ $i -lt 100 ] && ! grep -q "anti-aliasing" "$out/kiosk_$plat.$sig.txt"; do sleep 0.1; i=$((i + 1)); done
+    while [ $i -lt 100 ] && ! grep -q "anti-aliasing" "$out/kiosk_$plat.$sig$again.txt"; do sleep 0.1; i=$((i + 1)); done
     sleep 0.5
     kill -"$sig" "$pid"
     sent=$(date +%s%N)
+    # A second signal while it shuts down (systemd's stop, then an impatient
+    # operator): it must not cut the shutdown short.
+    [ -n "$again" ] && kill -"$again" "$pid" 2>/dev/null
     ( sleep 10; kill -KILL "$pid" 2>/dev/null ) &
     guard=$!
     wait "$pid"
     rc=$?
     ms=$(( ($(date +%s%N) - sent) / 1000000 ))
     kill "$guard" 2>/dev/null
-    if [ "$rc" -eq 0 ] && [ "$ms" -lt 5000 ] && grep -q "^kiosk: [0-9]* frames in" "$out/kiosk_$plat.$sig.txt"; then
-        pass=$((pass + 1)); echo "ok   $plat SIG$sig: exit 0 after $ms ms: $(grep '^kiosk:' "$out/kiosk_$plat.$sig.txt")"
+    if [ "$rc" -eq 0 ] && [ "$ms" -lt 5000 ] && grep -q "^kiosk: [0-9]* frames in" "$out/kiosk_$plat.$sig$again.txt"; then
+        pass=$((pass + 1)); echo "ok   $plat SIG$sig${again:+ then SIG$again}: exit 0 after $ms ms: $(grep '^kiosk:' "$out/kiosk_$plat.$sig$again.txt")"
     else
-        fail=$((fail + 1)); echo "FAIL $plat SIG$sig: exit $rc after $ms ms"; cat "$out/kiosk_$plat.$sig.txt"
+        fail=$((fail + 1)); echo "FAIL $plat SIG$sig: exit $rc after $ms ms"; cat "$out/kiosk_$plat.$sig$again.txt"
     fi
 }
 run headless TERM
 run headless INT
+run headless TERM+TERM
+run headless INT+TERM
 if command -v Xvfb >/dev/null; then
     xvfb_first=95
     . "$(dirname "$0")/xvfb.sh"

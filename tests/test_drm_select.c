@@ -1,6 +1,9 @@
 /* DRM connector and mode selection on recorded data (no display needed). */
 #include <errno.h>
 #include <string.h>
+#include <unistd.h>
+#include <sys/stat.h>
+#include <stdlib.h>
 
 #include "check.h"
 #include "drm_select.h"
@@ -53,5 +56,26 @@ int main(void)
     jd_drm_master_message("/dev/dri/card0", EACCES, why, sizeof why);
     CHECK(strstr(why, "/dev/dri/card0") && strstr(why, "cannot become DRM master") && strstr(why, "display server"),
           "no master: %s", why);
+    /* Who holds the device, from a recorded /proc: process 812 (Xorg) has
+     * it open (here /dev/null stands for the card), 900 has something else. */
+    char root[] = "/tmp/jade-proc-XXXXXX";
+    if (mkdtemp(root)) {
+        char path[256];
+        snprintf(path, sizeof path, "%s/812", root); mkdir(path, 0755);
+        snprintf(path, sizeof path, "%s/812/fd", root); mkdir(path, 0755);
+        snprintf(path, sizeof path, "%s/812/fd/7", root); symlink("/dev/null", path);
+        snprintf(path, sizeof path, "%s/812/comm", root);
+        FILE *f = fopen(path, "w"); if (f) { fputs("Xorg\n", f); fclose(f); }
+        snprintf(path, sizeof path, "%s/900", root); mkdir(path, 0755);
+        snprintf(path, sizeof path, "%s/900/fd", root); mkdir(path, 0755);
+        snprintf(path, sizeof path, "%s/900/fd/3", root); symlink("/dev/zero", path);
+        char who[128];
+        int n = jd_drm_holders(root, "/dev/null", 1, who, sizeof who);
+        CHECK(n == 1 && !strcmp(who, "Xorg (pid 812)"), "the holder named: %d, '%s'", n, who);
+        CHECK(jd_drm_holders(root, "/dev/null", 812, who, sizeof who) == 0, "itself not counted");
+        char cmd[300];
+        snprintf(cmd, sizeof cmd, "rm -rf %s", root);
+        if (system(cmd) != 0) printf("could not remove %s\n", root);
+    }
     return jd_check_summary("drm selection");
 }
