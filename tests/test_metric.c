@@ -13,6 +13,15 @@
 enum { W = 64, H = 48 };
 static float a[W * H * 3], b[W * H * 3];
 
+static void write_pfm(const char *path, const char *header, const float *v, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) return;
+    fputs(header, f);
+    fwrite(v, sizeof(float), n, f);
+    fclose(f);
+}
+
 int main(void)
 {
     srand(7);
@@ -44,35 +53,23 @@ int main(void)
     CHECK(worst < 0.03, "display encoding undone within 8-bit rounding (worst %.4f relative)", worst);
     /* PFM: rows stored bottom-up, read back top-down. */
     char path[] = "/tmp/jade-metric-XXXXXX";
-    int fd = mkstemp(path);
-    FILE *f = fdopen(fd, "wb");
-    fprintf(f, "PF\n2 2\n-1.0\n");
+    close(mkstemp(path));
     float rows[12] = {0, 0, 0, 1, 1, 1, /* bottom row */ 2, 2, 2, 3, 3, 3 /* top row */};
-    fwrite(rows, sizeof(float), 12, f);
-    fclose(f);
     int w = 0, h = 0;
     char why[120] = "";
+    write_pfm(path, "PF\n2 2\n-1.0\n", rows, 12);
     float *img = jd_pfm_load(path, &w, &h, why, sizeof why);
     CHECK(img && w == 2 && h == 2 && img[0] == 2 && img[3] == 3 && img[9] == 1, "PFM read top-down: %s", why);
     free(img);
-    f = fopen(path, "wb");
-    fprintf(f, "PF\n2 2\n-1.0\n");
-    fwrite(rows, sizeof(float), 5, f);
-    fclose(f);
+    write_pfm(path, "PF\n2 2\n-1.0\n", rows, 5);
     CHECK(!jd_pfm_load(path, &w, &h, why, sizeof why) && strstr(why, "should hold 48 bytes"), "truncated PFM refused: %s", why);
     /* Windows tools end header lines with CR LF: one byte more, not one off. */
-    f = fopen(path, "wb");
-    fprintf(f, "PF\r\n2 2\r\n-1.0\r\n");
-    fwrite(rows, sizeof(float), 12, f);
-    fclose(f);
+    write_pfm(path, "PF\r\n2 2\r\n-1.0\r\n", rows, 12);
     img = jd_pfm_load(path, &w, &h, why, sizeof why);
     CHECK(img && img[0] == 2 && img[3] == 3 && img[9] == 1, "PFM with CR LF read exactly: %s", why);
     free(img);
     /* 2^32 + 2 must not wrap round to 2. */
-    f = fopen(path, "wb");
-    fprintf(f, "PF\n4294967298 2\n-1.0\n");
-    fwrite(rows, sizeof(float), 12, f);
-    fclose(f);
+    write_pfm(path, "PF\n4294967298 2\n-1.0\n", rows, 12);
     CHECK(!jd_pfm_load(path, &w, &h, why, sizeof why) && strstr(why, "4294967298"), "PFM width past 2^32 refused: %s", why);
     unlink(path);
     CHECK(!jd_pfm_decode((const unsigned char *)"PF", 2, &w, &h, why, sizeof why), "a bare PF refused: %s", why);
