@@ -59,7 +59,9 @@ if [ ! -f "$mesa/.extracted" ]; then
                           apt-get -q $aptopt source --download-only mesa; } >>"$cache/apt.log" 2>&1) ||
         skip "apt-get source mesa failed: $(grep -E '^(E|W):' "$cache/apt.log" | head -1)"
     rm -rf "$mesa"
-    dpkg-source -x "$(ls "$cache"/src/mesa_*.dsc | head -1)" "$mesa" >/dev/null
+    # apt checked the files against the signed Sources index; dpkg-source
+    # would only complain that no Debian keyring is installed.
+    dpkg-source -x "$(ls "$cache"/src/mesa_*.dsc | head -1)" "$mesa" >>"$cache/apt.log" 2>&1
     (cd "$mesa" && patch -p1 -s < "$root/tools/device/vc4-shim.patch")
     touch "$mesa/.extracted"
 fi
