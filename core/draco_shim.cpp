@@ -6,6 +6,12 @@
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <utility>
+#include <vector>
+
+#ifdef JD_HAVE_MESHOPT
+#include <meshoptimizer.h>
+#endif
 
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
@@ -58,7 +64,49 @@ bool put_attribute(Out &out, const draco::PointAttribute *att, uint32_t nv, int 
     return true;
 }
 
-int decode(const void *data, size_t size, uint32_t max_vertices, uint32_t max_faces,
+// The triangles in the order a GPU draws best: meshoptimizer's vertex cache
+// order (fewer vertex shader runs), then its overdraw order (fewer pixels
+// shaded twice, for up to 5% more vertex work). Done here, in the decoder's
+// child process, where the heap is allowed: the parent keeps its one
+// allocation. Indices past the vertex count (a hostile file) leave the
+// order alone; the parent refuses them anyway.
+void order_for_gpu(std::vector<uint32_t> &idx, const draco::PointAttribute *pos, uint32_t nv)
+{
+#ifdef JD_HAVE_MESHOPT
+    for (uint32_t i : idx)
+        if (i >= nv) return;
+    std::vector<float> p(3 * size_t(nv));
+    for (uint32_t i = 0; i < nv; ++i) {
+        draco::AttributeValueIndex avi = pos->mapped_index(draco::PointIndex(i));
+        if (avi.value() >= pos->size()) return;
+        float v[3] = {0, 0, 0};
+        if (!pos->ConvertValue<float>(avi, 3, v)) return;
+        for (int k = 0; k < 3; ++k) p[3 * size_t(i) + k] = std::isfinite(v[k]) ? v[k] : 0.0f;
+    }
+    // The overdraw order sorts by which way triangles face: a mesh wound
+    // inside out (the parent turns it round later) is ordered turned round.
+    double vol6 = 0;
+    for (size_t t = 0; t + 2 < idx.size(); t += 3) {
+        const float *a = &p[3 * size_t(idx[t])], *b = &p[3 * size_t(idx[t + 1])], *c = &p[3 * size_t(idx[t + 2])];
+        vol6 += a[0] * (double(b[1]) * c[2] - double(b[2]) * c[1]) - a[1] * (double(b[0]) * c[2] - double(b[2]) * c[0]) +
+                a[2] * (double(b[0]) * c[1] - double(b[1]) * c[0]);
+    }
+    auto turn = [&idx]() {
+        for (size_t t = 0; t + 2 < idx.size(); t += 3) std::swap(idx[t + 1], idx[t + 2]);
+    };
+    if (vol6 < 0) turn();
+    std::vector<uint32_t> tmp(idx.size());
+    meshopt_optimizeVertexCache(tmp.data(), idx.data(), idx.size(), nv);
+    meshopt_optimizeOverdraw(idx.data(), tmp.data(), idx.size(), p.data(), nv, 3 * sizeof(float), 1.05f);
+    if (vol6 < 0) turn(); // the file's winding: the parent decides what to do with it
+#else
+    (void)idx;
+    (void)pos;
+    (void)nv;
+#endif
+}
+
+int decode(const void *data, size_t size, uint32_t max_vertices, uint32_t max_faces, int keep_order,
            jd_draco_write_fn write, void *user, char *err, size_t errlen)
 {
     draco::DecoderBuffer buffer;
@@ -106,11 +154,23 @@ int decode(const void *data, size_t size, uint32_t max_vertices, uint32_t max_fa
         set_err(err, errlen, "an attribute maps a vertex to a value that does not exist");
         return -1;
     }
+    std::vector<uint32_t> idx(3 * size_t(nf));
     for (uint32_t f = 0; f < nf; ++f) {
         const draco::Mesh::Face &face = mesh->face(draco::FaceIndex(f));
-        uint32_t idx[3] = {face[0].value(), face[1].value(), face[2].value()};
-        out->put(idx, sizeof idx);
+        for (int k = 0; k < 3; ++k) idx[3 * size_t(f) + k] = face[k].value();
     }
+    if (!keep_order) {
+        // Ordering is a nicety: a mesh near the child's memory limit keeps
+        // its file order rather than failing to load.
+        std::vector<uint32_t> file_order;
+        try {
+            file_order = idx;
+            order_for_gpu(idx, pos, nv);
+        } catch (const std::bad_alloc &) {
+            if (file_order.size() == idx.size()) idx.swap(file_order);
+        }
+    }
+    out->put(idx.data(), sizeof(uint32_t) * idx.size());
     out->flush();
     if (!out->ok) {
         set_err(err, errlen, "could not hand the decoded mesh back (pipe closed)");
@@ -122,11 +182,11 @@ int decode(const void *data, size_t size, uint32_t max_vertices, uint32_t max_fa
 } // namespace
 
 extern "C" int jd_draco_decode(const void *data, size_t size, uint32_t max_vertices,
-                               uint32_t max_faces, jd_draco_write_fn write, void *user,
+                               uint32_t max_faces, int keep_order, jd_draco_write_fn write, void *user,
                                char *err, size_t errlen)
 {
     try {
-        return decode(data, size, max_vertices, max_faces, write, user, err, errlen);
+        return decode(data, size, max_vertices, max_faces, keep_order, write, user, err, errlen);
     } catch (const std::bad_alloc &) {
         set_err(err, errlen, "draco ran out of memory while decoding");
     } catch (const std::exception &e) {

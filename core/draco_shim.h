@@ -21,9 +21,11 @@ typedef struct jd_draco_record_header {
 
 typedef int (*jd_draco_write_fn)(void *user, const void *data, size_t n);
 
-/* Decodes a Draco mesh and streams it out. Returns 0, or -1 with a reason in
- * err. Never throws: every C++ exception stops at this boundary. */
-int jd_draco_decode(const void *data, size_t size, uint32_t max_vertices, uint32_t max_faces,
+/* Decodes a Draco mesh and streams it out, its triangles in the order a GPU
+ * draws best unless keep_order (where built with meshoptimizer). Returns 0,
+ * or -1 with a reason in err. Never throws: every C++ exception stops at
+ * this boundary. */
+int jd_draco_decode(const void *data, size_t size, uint32_t max_vertices, uint32_t max_faces, int keep_order,
                     jd_draco_write_fn write, void *user, char *err, size_t errlen);
 
 #ifdef __cplusplus

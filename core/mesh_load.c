@@ -70,7 +70,7 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
     }
 #endif
     char msg[256] = "";
-    int rc = jd_draco_decode(buf, n, d->max_vertices, d->max_faces, write_all, &data_fd, msg,
+    int rc = jd_draco_decode(buf, n, d->max_vertices, d->max_faces, d->keep_face_order, write_all, &data_fd, msg,
                              sizeof msg);
     if (rc != 0) write_all(&err_fd, msg, strlen(msg));
     _exit(rc == 0 ? 0 : 1);

@@ -15,6 +15,7 @@ typedef struct jd_load_desc {
     int timeout_ms;             /* [1500] wall time for the whole decode */
     size_t decode_memory_bytes; /* [192 MiB] address space the decoder may add */
     int allow_32bit_indices;    /* the GL device has OES_element_index_uint */
+    int keep_face_order;        /* [0: triangles reordered for the GPU's vertex cache and overdraw] */
 } jd_load_desc;
 
 typedef struct jd_load_stats {

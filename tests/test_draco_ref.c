@@ -77,7 +77,8 @@ int main(int argc, char **argv)
         jd_mesh m;
         jd_load_stats st;
         jd_error err = {0};
-        jd_load_desc ld = {.path = path, .allow_32bit_indices = 1, .timeout_ms = 5000};
+        /* The file's face order, to compare corner by corner with draco_decoder. */
+        jd_load_desc ld = {.path = path, .allow_32bit_indices = 1, .timeout_ms = 5000, .keep_face_order = 1};
         jd_result r = jd_mesh_load_draco(&ld, &a, &m, &st, &err);
         files++;
         if (is_point_cloud(path)) {
