@@ -30,7 +30,7 @@ typedef struct opt {
 #define V JD_OPT_VIEW
 #define K JD_OPT_KIOSK
 static const opt table[] = {
-    {"--mesh", T_PATH, OFF(mesh), 0, 0, S, "FILE.drc   Draco mesh [the default asset]"},
+    {"--mesh", T_PATH, OFF(mesh), 0, 0, S, "FILE       Draco, OBJ, PLY or STL mesh, told apart by content [the default asset]"},
     {"--out", T_PATH, OFF(out), 0, 0, RO | JD_OPT_REFERENCE, "FILE.png   output image [jade.png]"},
     {"--sheet", T_PATH, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual | full side by side, labelled"},
     {"--sheet-reference", T_PATH, OFF(sheet_ref), 0, 0, RO, "FILE.png   with --sheet: a reference picture as the first panel"},

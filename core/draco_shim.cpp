@@ -1,7 +1,10 @@
 // The only C++ in jade: libdraco 1.5.5 has no C API.
 #include "draco_shim.h"
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -14,9 +17,24 @@
 #endif
 
 #include <draco/compression/decode.h>
+#include <draco/io/obj_decoder.h>
+#include <draco/io/ply_decoder.h>
+#include <draco/io/stl_decoder.h>
 #include <draco/mesh/mesh.h>
 
+#include "mesh_format.h"
+
 namespace {
+
+const char *format_name(int format)
+{
+    switch (format) {
+    case JD_FORMAT_OBJ: return "OBJ reader";
+    case JD_FORMAT_PLY: return "PLY reader";
+    case JD_FORMAT_STL: return "STL reader";
+    default: return "draco";
+    }
+}
 
 void set_err(char *err, size_t errlen, const char *msg)
 {
@@ -106,21 +124,113 @@ void order_for_gpu(std::vector<uint32_t> &idx, const draco::PointAttribute *pos,
 #endif
 }
 
-int decode(const void *data, size_t size, uint32_t max_vertices, uint32_t max_faces, int keep_order,
+// libdraco 1.5.5 reads binary STL only: ASCII STL ("solid", then "facet
+// normal", "outer loop", three "vertex x y z", "endloop", "endfacet") is
+// rewritten as binary first. Anything else in the text is an error.
+bool ascii_stl_to_binary(const char *text, size_t n, std::vector<char> &out)
+{
+    std::string s(text, n);
+    out.assign(84, 0);
+    uint32_t count = 0;
+    size_t at = 0;
+    auto word = [&](std::string &w) {
+        while (at < s.size() && std::isspace(static_cast<unsigned char>(s[at]))) at++;
+        size_t b = at;
+        while (at < s.size() && !std::isspace(static_cast<unsigned char>(s[at]))) at++;
+        w = s.substr(b, at - b);
+        return !w.empty();
+    };
+    auto number = [&](float &v) {
+        std::string w;
+        if (!word(w)) return false;
+        char *end;
+        v = std::strtof(w.c_str(), &end);
+        return *end == 0;
+    };
+    std::string w;
+    if (!word(w) || w != "solid") return false;
+    while (word(w)) {
+        if (w == "endsolid") break;
+        if (w != "facet") continue; // the solid's name
+        float tri[12];
+        std::string a, b;
+        if (!word(a) || a != "normal" || !number(tri[0]) || !number(tri[1]) || !number(tri[2])) return false;
+        if (!word(a) || a != "outer" || !word(b) || b != "loop") return false;
+        for (int k = 0; k < 3; ++k)
+            if (!word(a) || a != "vertex" || !number(tri[3 + 3 * k]) || !number(tri[4 + 3 * k]) ||
+                !number(tri[5 + 3 * k]))
+                return false;
+        if (!word(a) || a != "endloop" || !word(b) || b != "endfacet") return false;
+        const char *bytes = reinterpret_cast<const char *>(tri);
+        out.insert(out.end(), bytes, bytes + sizeof tri);
+        out.insert(out.end(), 2, 0); // attribute byte count
+        if (++count == 0) return false;
+    }
+    std::memcpy(&out[80], &count, 4);
+    return count > 0;
+}
+
+// libdraco's readers: its own format, and OBJ, PLY and STL through its io
+// library. A failure comes back with the reader's message.
+std::unique_ptr<draco::Mesh> read_mesh(draco::DecoderBuffer *buffer, int format, char *err, size_t errlen)
+{
+    draco::Status status;
+    std::unique_ptr<draco::Mesh> mesh;
+    if (format == JD_FORMAT_OBJ || format == JD_FORMAT_PLY) {
+        mesh.reset(new draco::Mesh());
+        status = format == JD_FORMAT_OBJ ? draco::ObjDecoder().DecodeFromBuffer(buffer, mesh.get())
+                                         : draco::PlyDecoder().DecodeFromBuffer(buffer, mesh.get());
+    } else if (format == JD_FORMAT_STL) {
+        std::vector<char> binary;
+        draco::DecoderBuffer converted;
+        const char *d = buffer->data_head();
+        size_t n = static_cast<size_t>(buffer->remaining_size());
+        bool is_binary = n >= 84 && uint64_t(uint32_t(uint8_t(d[80])) | uint32_t(uint8_t(d[81])) << 8 |
+                                             uint32_t(uint8_t(d[82])) << 16 | uint32_t(uint8_t(d[83])) << 24) *
+                                                    50 + 84 == n;
+        if (is_binary) {
+            // Many binary STLs' 80-byte headers begin "solid", which libdraco
+            // takes for ASCII: the header carries nothing jade needs.
+            binary.assign(d, d + n);
+            std::memset(binary.data(), ' ', 80);
+        } else if (!ascii_stl_to_binary(d, n, binary)) {
+            set_err(err, errlen, "STL reader could not decode it: not a well-formed ASCII STL");
+            return nullptr;
+        }
+        converted.Init(binary.data(), binary.size());
+        buffer = &converted;
+        auto result = draco::StlDecoder().DecodeFromBuffer(buffer);
+        status = result.status();
+        if (result.ok()) mesh = std::move(result).value();
+    } else {
+        auto result = draco::Decoder().DecodeMeshFromBuffer(buffer);
+        status = result.status();
+        if (result.ok()) mesh = std::move(result).value();
+    }
+    if (!status.ok() || !mesh) {
+        char msg[256];
+        std::snprintf(msg, sizeof msg, "%s could not decode it: %s", format_name(format), status.error_msg());
+        set_err(err, errlen, msg);
+        return nullptr;
+    }
+    if (format == JD_FORMAT_STL) {
+        // STL repeats every corner with its facet's normal: without them,
+        // shared corners merge and jade computes smooth normals.
+        const draco::PointAttribute *n = mesh->GetNamedAttribute(draco::GeometryAttribute::NORMAL);
+        if (n) mesh->DeleteAttribute(mesh->GetNamedAttributeId(draco::GeometryAttribute::NORMAL));
+        mesh->DeduplicateAttributeValues();
+        mesh->DeduplicatePointIds();
+    }
+    return mesh;
+}
+
+int decode(const void *data, size_t size, int format, uint32_t max_vertices, uint32_t max_faces, int keep_order,
            jd_draco_write_fn write, void *user, char *err, size_t errlen)
 {
     draco::DecoderBuffer buffer;
     buffer.Init(static_cast<const char *>(data), size);
-    draco::Decoder decoder;
-    auto result = decoder.DecodeMeshFromBuffer(&buffer);
-    if (!result.ok()) {
-        char msg[256];
-        std::snprintf(msg, sizeof msg, "draco could not decode it: %s",
-                      result.status().error_msg());
-        set_err(err, errlen, msg);
-        return -1;
-    }
-    std::unique_ptr<draco::Mesh> mesh = std::move(result).value();
+    std::unique_ptr<draco::Mesh> mesh = read_mesh(&buffer, format, err, errlen);
+    if (!mesh) return -1;
     const uint32_t nv = mesh->num_points();
     const uint32_t nf = mesh->num_faces();
     if (nv == 0 || nf == 0) {
@@ -181,12 +291,12 @@ int decode(const void *data, size_t size, uint32_t max_vertices, uint32_t max_fa
 
 } // namespace
 
-extern "C" int jd_draco_decode(const void *data, size_t size, uint32_t max_vertices,
+extern "C" int jd_draco_decode(const void *data, size_t size, int format, uint32_t max_vertices,
                                uint32_t max_faces, int keep_order, jd_draco_write_fn write, void *user,
                                char *err, size_t errlen)
 {
     try {
-        return decode(data, size, max_vertices, max_faces, keep_order, write, user, err, errlen);
+        return decode(data, size, format, max_vertices, max_faces, keep_order, write, user, err, errlen);
     } catch (const std::bad_alloc &) {
         set_err(err, errlen, "draco ran out of memory while decoding");
     } catch (const std::exception &e) {

@@ -21,12 +21,13 @@ typedef struct jd_draco_record_header {
 
 typedef int (*jd_draco_write_fn)(void *user, const void *data, size_t n);
 
-/* Decodes a Draco mesh and streams it out, its triangles in the order a GPU
+/* Decodes a mesh (format: a jd_mesh_format; libdraco reads Draco, OBJ, PLY
+ * and STL) and streams it out, its triangles in the order a GPU
  * draws best unless keep_order (where built with meshoptimizer). Returns 0,
  * or -1 with a reason in err. Never throws: every C++ exception stops at
  * this boundary. */
-int jd_draco_decode(const void *data, size_t size, uint32_t max_vertices, uint32_t max_faces, int keep_order,
-                    jd_draco_write_fn write, void *user, char *err, size_t errlen);
+int jd_draco_decode(const void *data, size_t size, int format, uint32_t max_vertices, uint32_t max_faces,
+                    int keep_order, jd_draco_write_fn write, void *user, char *err, size_t errlen);
 
 #ifdef __cplusplus
 }

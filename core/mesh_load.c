@@ -1,4 +1,5 @@
 #include "mesh_load.h"
+#include "mesh_format.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -70,8 +71,8 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
     }
 #endif
     char msg[256] = "";
-    int rc = jd_draco_decode(buf, n, d->max_vertices, d->max_faces, d->keep_face_order, write_all, &data_fd, msg,
-                             sizeof msg);
+    int rc = jd_draco_decode(buf, n, (int)d->format, d->max_vertices, d->max_faces, d->keep_face_order, write_all,
+                             &data_fd, msg, sizeof msg);
     if (rc != 0) write_all(&err_fd, msg, strlen(msg));
     _exit(rc == 0 ? 0 : 1);
 }
@@ -160,14 +161,14 @@ static jd_result child_failure(const jd_load_desc *d, int status, int err_fd, jd
         int sig = WTERMSIG(status);
         if (sig == SIGXCPU || sig == SIGALRM)
             return jd_fail(err, JD_ERR_TIMEOUT, "%s: decoding used more than its CPU time; refused", d->path);
-        return jd_fail(err, JD_ERR_CRASH, "%s: the Draco decoder crashed (signal %d, %s); the file is corrupt",
-                       d->path, sig, strsignal(sig));
+        return jd_fail(err, JD_ERR_CRASH, "%s: the %s decoder crashed (signal %d, %s); the file is corrupt",
+                       d->path, jd_mesh_format_name(d->format), sig, strsignal(sig));
     }
     if (strstr(msg, "out of memory"))
         return jd_fail(err, JD_ERR_LIMIT, "%s: decoding needed more than %zu MiB; refused", d->path,
                        d->decode_memory_bytes >> 20);
     if (msg[0]) return jd_fail(err, JD_ERR_FORMAT, "%s: %s", d->path, msg);
-    return jd_fail(err, JD_ERR_FORMAT, "%s: the Draco decoder failed (exit %d)", d->path,
+    return jd_fail(err, JD_ERR_FORMAT, "%s: the %s decoder failed (exit %d)", d->path, jd_mesh_format_name(d->format),
                    WIFEXITED(status) ? WEXITSTATUS(status) : -1);
 }
 
@@ -191,15 +192,20 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
     if (r) return r;
     st.file_bytes = n;
 
-    jd_draco_info info;
-    r = jd_draco_peek(buf, n, d.path, &info, err);
+    /* The format by content; the sizes its header declares are checked
+     * before any decoder sees the file. */
+    jd_mesh_format format;
+    uint32_t declared_faces, declared_vertices;
+    r = jd_mesh_peek(buf, n, d.path, &format, &declared_faces, &declared_vertices, err);
     if (r) goto fail;
-    st.declared_faces = info.num_faces;
-    if (info.num_faces > d.max_faces || info.num_vertices > d.max_vertices) {
+    st.declared_faces = declared_faces;
+    st.format = format;
+    if (declared_faces > d.max_faces || (format != JD_FORMAT_STL && declared_vertices > d.max_vertices)) {
         r = jd_fail(err, JD_ERR_LIMIT, "%s: declares %u faces and %u vertices, over the limit of %u / %u; refused",
-                    d.path, info.num_faces, info.num_vertices, d.max_faces, d.max_vertices);
+                    d.path, declared_faces, declared_vertices, d.max_faces, d.max_vertices);
         goto fail;
     }
+    d.format = format;
 
     int data_pipe[2], err_pipe[2];
     if (pipe2(data_pipe, O_CLOEXEC) != 0) { r = jd_fail(err, JD_ERR_IO, "pipe: %s", strerror(errno)); goto fail; }

@@ -1,4 +1,5 @@
-/* Loading a Draco mesh from a file that may be corrupt or hostile. */
+/* Loading a mesh (Draco, OBJ, PLY or STL, told apart by content) from a file
+ * that may be corrupt or hostile. */
 #ifndef JD_MESH_LOAD_H
 #define JD_MESH_LOAD_H
 
@@ -16,12 +17,14 @@ typedef struct jd_load_desc {
     size_t decode_memory_bytes; /* [192 MiB] address space the decoder may add */
     int allow_32bit_indices;    /* the GL device has OES_element_index_uint */
     int keep_face_order;        /* [0: triangles reordered for the GPU's vertex cache and overdraw] */
+    int format;                 /* set by the loader: the jd_mesh_format found in the file */
 } jd_load_desc;
 
 typedef struct jd_load_stats {
     double decode_ms;   /* fork to last byte received */
     size_t file_bytes;
     uint32_t declared_faces;
+    int format;         /* jd_mesh_format: Draco, OBJ, PLY or STL, by content */
 } jd_load_stats;
 
 /* libdraco runs in a child process under an address-space and CPU limit and a

@@ -61,7 +61,7 @@ if command -v draco_encoder >/dev/null; then
 else
     echo "skip NaN attribute: no draco_encoder"
 fi
-expect "non-draco mesh" 1 "not a Draco file" -- "$jade" render --mesh "$tmp/hello.drc" --out "$tmp/x.png"
+expect "not a mesh" 1 "not a mesh jade reads" -- "$jade" render --mesh "$tmp/hello.drc" --out "$tmp/x.png"
 expect "unwritable output" 1 "cannot write there" -- "$jade" render --size 64x64 --out "$tmp/no/such/dir/x.png"
 expect "tiny budget" 1 "memory budget exhausted" -- "$jade" render --budget-mb 1 --out "$tmp/x.png"
 left=$(ls "$tmp" | grep -c '\.tmp\.' || true)
@@ -104,7 +104,7 @@ expect "reference help" 0 "--samples" -- "$jade" reference --help
 expect "reference bad flag" 2 "unknown option '--mode'" -- "$jade" reference --mode dual
 expect "reference bad samples" 2 "expected a whole number" -- "$jade" reference --samples 10
 expect "reference missing mesh" 1 "cannot open" -- "$jade" reference --mesh "$tmp/nope.drc" --out "$tmp/r.png"
-expect "reference non-draco" 1 "not a Draco file" -- "$jade" reference --mesh "$tmp/hello.drc" --out "$tmp/r.png"
+expect "reference not a mesh" 1 "not a mesh jade reads" -- "$jade" reference --mesh "$tmp/hello.drc" --out "$tmp/r.png"
 expect "reference unwritable" 1 "cannot write there" -- "$jade" reference --size 32x32 --out "$tmp/no/dir/r.png" --quiet
 if [ ! -e "$tmp/r.png" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: a failed reference left r.png"; fi
 expect "reference" 0 "wrote $tmp/ref.png, $tmp/ref.pfm, $tmp/mask.png" -- \

@@ -81,11 +81,17 @@ int main(int argc, char **argv)
     if (!mkdtemp(dir)) return 1;
 
     expect_refused("empty.drc", "", 0, "empty");
-    expect_refused("wrong_magic.drc", "DRACU\x02\x02\x01\x00\x00\x00\x01\x01", 13, "magic");
-    const char text[] = "# this is an OBJ file, not Draco\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-    expect_refused("not_draco.obj", text, sizeof text - 1, "not a Draco file");
+    expect_refused("wrong_magic.drc", "DRACU\x02\x02\x01\x00\x00\x00\x01\x01", 13, "not a mesh jade reads");
+    /* OBJ is read now: text that is not an OBJ is not. */
+    const char text[] = "# no vertices here\nhello\n";
+    expect_refused("not_a_mesh.obj", text, sizeof text - 1, "not a mesh jade reads");
     const unsigned char png[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
-    expect_refused("image.png.drc", png, sizeof png, "not a Draco file");
+    expect_refused("image.png.drc", png, sizeof png, "not a mesh jade reads");
+    /* A PLY declaring a billion faces, and one whose header never ends. */
+    const char ply_big[] = "ply\nformat ascii 1.0\nelement vertex 3\nelement face 1000000000\nend_header\n";
+    expect_refused("absurd.ply", ply_big, sizeof ply_big - 1, "over the limit");
+    const char ply_open[] = "ply\nformat ascii 1.0\nelement vertex 3\n";
+    expect_refused("open_header.ply", ply_open, sizeof ply_open - 1, "no end_header");
     /* A billion faces declared in 17 bytes (sequential, bitstream 2.2). */
     const unsigned char absurd_seq[] = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 0, 0, 0, 0x80, 0x94, 0xeb, 0xdc, 0x03, 3, 1};
     expect_refused("absurd_faces_seq.drc", absurd_seq, sizeof absurd_seq, "declares 1000000000 faces");

@@ -37,6 +37,15 @@ for n, b in meshes.items():
             open(f'{c}/{d}/{n}-meta{depth}.drc', 'wb').write(bytes(meta) + nested(depth) + b[11:])
         open(f'{c}/fuzz_metadata/{n}-meta{depth}', 'wb').write(nested(depth) + b[11:])
 PY
+# The other mesh formats, for the sandboxed load: OBJ, PLY, ASCII and binary STL.
+cp "$tmp/tet.obj" "$c/fuzz_mesh_load/tet.obj"
+printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' > "$c/fuzz_mesh_load/tet.ply"
+printf 'solid t\nfacet normal 0 0 -1\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid t\n' > "$c/fuzz_mesh_load/tri.stl"
+python3 - "$c/fuzz_mesh_load/tri_binary.stl" <<'PY'
+import struct, sys
+open(sys.argv[1], 'wb').write(b'solid binary'.ljust(80, b' ') + struct.pack('<I', 1) +
+                              struct.pack('<12fH', 0, 0, -1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0))
+PY
 # Pictures: a 2x2 PFM with LF and with CR LF ends, a PPM, a BMP and a PNG
 # (the PNG written by python's zlib, no image library needed).
 python3 - "$c/fuzz_image" <<'PY'
