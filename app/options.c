@@ -86,7 +86,7 @@ static const opt table[] = {
     {"--log-every", T_FLOAT, OFF(log_every), 0, 86400, K | B,
      "S          a health line every S seconds: frames, frame times, missed vblanks, memory, fds, GL names [0: off]"},
     {"--cycle-materials", T_FLAG, OFF(cycle_materials), 0, 0, B, "           bench: a different material every 10 frames (soak tests)"},
-    {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, S, "N          memory budget of the core [8]"},
+    {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, S, "N          memory budget, fixed [8 + the output pictures, doubled until the mesh fits]"},
     {"--decode-timeout-ms", T_INT, OFF(load.timeout_ms), 1, 600000, S, "N          refuse a mesh whose decode takes longer [1500]"},
     {"--max-faces", T_INT, OFF(load.max_faces), 1, 100000000, S, "N          refuse meshes with more faces [4000000]"},
 };
@@ -268,6 +268,7 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
                 return 0;
             }
             *(int *)field = (int)d;
+            if (op->offset == OFF(budget_mb)) o->has_budget = 1;
             break;
         case T_FLOAT:
             if (!parse_double(v, op->lo, op->hi, &d)) {

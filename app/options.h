@@ -37,7 +37,7 @@ typedef struct jd_options {
     jd_load_desc load;
     jd_renderer_desc rdesc;
     jd_scene scene;
-    int has_sigma_s, has_sigma_a, has_eta;
+    int has_sigma_s, has_sigma_a, has_eta, has_budget;
 } jd_options;
 
 enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD_OPT_KIOSK = 16, JD_OPT_REFERENCE = 32, JD_OPT_METRIC = 64 };

@@ -40,23 +40,33 @@ int jd_default_asset(char *out, size_t cap)
 static int load_mesh(jd_session *s, jd_options *o, const char *cmd)
 {
     jd_error err = {0};
-    /* The one allocation of the run: everything the core keeps lives here. */
+    /* The one allocation of the run: everything the core keeps lives here.
+     * Without --budget-mb it follows the job: 8 MiB for the core, the
+     * output pictures at this size, and, should the mesh not fit, twice as
+     * much until it does (up to 2 GiB), settled before any frame. */
     size_t budget = (size_t)o->budget_mb << 20;
-    s->memory = malloc(budget);
-    if (!s->memory) {
-        fprintf(stderr, "jade %s: cannot reserve the %d MiB memory budget\n", cmd, o->budget_mb);
-        return 0;
+    if (!o->has_budget) budget += (size_t)o->width * (size_t)o->height * 4 * (o->sheet ? JD_MODE_COUNT + 2 : 2);
+    for (;;) {
+        s->memory = malloc(budget);
+        if (!s->memory) {
+            fprintf(stderr, "jade %s: cannot reserve a memory budget of %zu MiB\n", cmd, budget >> 20);
+            return 0;
+        }
+        jd_arena_init(&s->arena, s->memory, budget);
+        /* Before any GL: the loader forks, and a GL driver may have threads. */
+        jd_load_desc ld = o->load;
+        ld.path = s->mesh_path;
+        ld.allow_32bit_indices = 1; /* the renderer checks the device later */
+        jd_result r = jd_mesh_load_draco(&ld, &s->arena, &s->mesh, &s->load, &err);
+        if (r == JD_OK) return 1;
+        free(s->memory);
+        s->memory = NULL;
+        if (r != JD_ERR_BUDGET || o->has_budget || budget >= ((size_t)1 << 31) / 2) {
+            fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+            return 0;
+        }
+        budget *= 2;
     }
-    jd_arena_init(&s->arena, s->memory, budget);
-    /* Before any GL: the loader forks, and a GL driver may have threads. */
-    jd_load_desc ld = o->load;
-    ld.path = s->mesh_path;
-    ld.allow_32bit_indices = 1; /* the renderer checks the device later */
-    if (jd_mesh_load_draco(&ld, &s->arena, &s->mesh, &s->load, &err)) {
-        fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
-        return 0;
-    }
-    return 1;
 }
 
 static int mesh_path(jd_session *s, jd_options *o, const char *cmd)

@@ -63,6 +63,8 @@ else
 fi
 expect "not a mesh" 1 "not a mesh jade reads" -- "$jade" render --mesh "$tmp/hello.drc" --out "$tmp/x.png"
 expect "unwritable output" 1 "cannot write there" -- "$jade" render --size 64x64 --out "$tmp/no/such/dir/x.png"
+expect "1920x1080 with the default budget" 0 "wrote $tmp/hd.png (1920x1080" -- "$jade" render --size 1920x1080 --out "$tmp/hd.png"
+rm -f "$tmp/hd.png"
 expect "tiny budget" 1 "memory budget exhausted" -- "$jade" render --budget-mb 1 --out "$tmp/x.png"
 left=$(ls "$tmp" | grep -c '\.tmp\.' || true)
 if [ ! -e "$tmp/x.png" ] && [ "$left" -eq 0 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: a failed run left output behind"; ls "$tmp"; fi
