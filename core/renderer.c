@@ -88,6 +88,11 @@ struct jd_renderer {
     int diff_levels;      /* levels whose weights are not all zero */
     float proxy_error;    /* world units: how far the proxy may stray from the mesh */
     GLenum mesh_index_type;
+    /* GPUs without 32-bit indices draw a mesh over 65,536 vertices as chunks
+     * that each fit 16 bits, their vertices copied (so shared edges are
+     * bit-identical: no seam). None: one draw of the whole mesh. */
+    struct mesh_chunk { size_t index_offset, vertex_offset; uint32_t count; } *chunks;
+    int num_chunks;
     shade_prog shade[JD_MODE_COUNT], a0, wide_prog; /* wide_prog: full's levels at half resolution */
     GLuint depth_prog, capture_prog, project_prog, reduce_mid_prog, reduce_faces_prog, reduce_final_prog, blur_prog,
         combine_prog;
@@ -255,6 +260,67 @@ static jd_result upload_mesh(const jd_mesh *m, jd_vec3 c, float inv_r, GLuint *v
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, *ibo);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)((size_t)m->index_size * m->num_indices), m->indices,
                  GL_STATIC_DRAW);
+    jd_arena_top_reset(a, top);
+    return glGetError() == GL_NO_ERROR ? JD_OK : jd_fail(err, JD_ERR_GL, "mesh upload failed (out of GPU memory?)");
+}
+
+/* The mesh as chunks of at most 65,535 distinct vertices each, in triangle
+ * order (which meshoptimizer made local: few vertices repeat across
+ * chunks). Vertex and index data for every chunk go into one buffer each. */
+static jd_result upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c, float inv_r, jd_arena *a,
+                                     jd_error *err)
+{
+    const uint32_t limit = 65535;
+    size_t top = jd_arena_top_mark(a);
+    /* Worst case every triangle brings three new vertices. */
+    size_t max_chunks = (size_t)m->num_indices / 3 / (limit / 3) + 2;
+    int32_t *local = jd_arena_alloc_top(a, sizeof(int32_t) * m->num_vertices, 16, "chunk vertex map", err);
+    uint32_t *used = jd_arena_alloc_top(a, sizeof(uint32_t) * limit, 16, "chunk vertex list", err);
+    float *v = jd_arena_alloc_top(a, sizeof(float) * 6 * (m->num_indices < (size_t)m->num_vertices * 2
+                                                              ? m->num_indices : (size_t)m->num_vertices * 2),
+                                  16, "chunked vertex upload", err);
+    uint16_t *ix = jd_arena_alloc_top(a, sizeof(uint16_t) * m->num_indices, 16, "chunked index upload", err);
+    r->chunks = jd_arena_alloc(a, sizeof *r->chunks * max_chunks, 16, "mesh chunks", err);
+    if (!local || !used || !v || !ix || !r->chunks) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
+    size_t v_cap = m->num_indices < (size_t)m->num_vertices * 2 ? m->num_indices : (size_t)m->num_vertices * 2;
+    for (uint32_t i = 0; i < m->num_vertices; i++) local[i] = -1;
+    size_t nv = 0, ni = 0;
+    uint32_t n_used = 0;
+    r->num_chunks = 0;
+    struct mesh_chunk *ch = NULL;
+    for (uint32_t t = 0; t < m->num_indices; t += 3) {
+        uint32_t tri[3] = {jd_mesh_index(m, t), jd_mesh_index(m, t + 1), jd_mesh_index(m, t + 2)};
+        int fresh = 0;
+        for (int k = 0; k < 3; k++) fresh += local[tri[k]] < 0;
+        if (!ch || n_used + (uint32_t)fresh > limit) { /* a new chunk */
+            for (uint32_t k = 0; k < n_used; k++) local[used[k]] = -1;
+            n_used = 0;
+            if ((size_t)r->num_chunks == max_chunks) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_BUDGET, "too many mesh chunks"); }
+            ch = &r->chunks[r->num_chunks++];
+            ch->index_offset = ni * sizeof(uint16_t);
+            ch->vertex_offset = nv * 6 * sizeof(float);
+            ch->count = 0;
+        }
+        for (int k = 0; k < 3; k++) {
+            if (local[tri[k]] < 0) {
+                if (nv == v_cap) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_BUDGET, "mesh chunks: vertex copies over the scratch"); }
+                const float *p = m->positions + 3 * (size_t)tri[k], *n = m->normals + 3 * (size_t)tri[k];
+                float *o = v + 6 * nv++;
+                o[0] = (p[0] - c.x) * inv_r; o[1] = (p[1] - c.y) * inv_r; o[2] = (p[2] - c.z) * inv_r;
+                o[3] = n[0]; o[4] = n[1]; o[5] = n[2];
+                local[tri[k]] = (int32_t)n_used;
+                used[n_used++] = tri[k];
+            }
+            ix[ni++] = (uint16_t)local[tri[k]];
+        }
+        ch->count += 3;
+    }
+    glGenBuffers(1, &r->mesh_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, r->mesh_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6 * nv), v, GL_STATIC_DRAW);
+    glGenBuffers(1, &r->mesh_ibo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->mesh_ibo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof(uint16_t) * ni), ix, GL_STATIC_DRAW);
     jd_arena_top_reset(a, top);
     return glGetError() == GL_NO_ERROR ? JD_OK : jd_fail(err, JD_ERR_GL, "mesh upload failed (out of GPU memory?)");
 }
@@ -530,8 +596,7 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     r->target_samples = samples;
     r->post_aa = d->antialias == JD_AA_POST || (d->antialias == JD_AA_AUTO && samples <= 1);
 
-    if (d->mesh->index_size == 4 && !d->caps->ext_element_index_uint)
-        return jd_fail(err, JD_ERR_UNSUPPORTED, "mesh needs 32-bit indices but OES_element_index_uint is missing");
+    int chunked = d->mesh->index_size == 4 && !d->caps->ext_element_index_uint;
     jd_result res = jd_mesh_build_proxy(d->mesh, d->proxy_cells, a, &r->proxy, err);
     if (res) return res;
     /* The 64x64 capture needs far fewer triangles than the light map. */
@@ -549,7 +614,8 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
     r->proxy_error = 0.87f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius / (float)d->proxy_cells;
     r->fit_key[0] = -1.0f;
     while (glGetError() != GL_NO_ERROR) {}
-    if ((res = upload_mesh(m, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err)) ||
+    if ((chunked ? (res = upload_mesh_chunked(r, m, c, 1.0f / radius, a, err))
+                 : (res = upload_mesh(m, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err))) ||
         (res = upload_mesh(&r->proxy, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a, err)) ||
         (res = upload_mesh(&r->capture_proxy, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a, err)))
         goto fail;
@@ -788,6 +854,24 @@ static void update_fit(jd_renderer *r, const jd_scene *s, const frame_params *f)
     for (int k = 0; k < DIFF_LEVELS; k++)
         for (int c = 0; c < 3; c++)
             if (r->fit.weight[DIFF_LOCAL + k][c] > 1e-5f) r->diff_levels = k + 1;
+}
+
+static void bind_mesh(GLuint vbo, GLuint ibo);
+
+/* The whole mesh: one draw, or one per 16-bit chunk. */
+static void draw_mesh(const jd_renderer *r)
+{
+    bind_mesh(r->mesh_vbo, r->mesh_ibo);
+    if (!r->num_chunks) {
+        glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
+        return;
+    }
+    for (int i = 0; i < r->num_chunks; i++) {
+        const struct mesh_chunk *ch = &r->chunks[i];
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 24, (const void *)ch->vertex_offset);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 24, (const void *)(ch->vertex_offset + 12));
+        glDrawElements(GL_TRIANGLES, (GLsizei)ch->count, GL_UNSIGNED_SHORT, (const void *)ch->index_offset);
+    }
 }
 
 static void bind_mesh(GLuint vbo, GLuint ibo)
@@ -1116,6 +1200,10 @@ static void draw_layer(jd_renderer *r, const target *t, const shade_prog *p, con
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
     set_shade_uniforms(r, p, f, t->w, t->h);
+    if (vbo == r->mesh_vbo) {
+        draw_mesh(r);
+        return;
+    }
     bind_mesh(vbo, ibo);
     glDrawElements(GL_TRIANGLES, (GLsizei)count, index_type, 0);
 }
@@ -1225,8 +1313,7 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
     set_shade_uniforms(r, &r->shade[s->mode], f, r->d.width, r->d.height);
-    bind_mesh(r->mesh_vbo, r->mesh_ibo);
-    glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
+    draw_mesh(r);
 }
 
 /* The frame from `scene` into the platform's target, its edges smoothed.
