@@ -171,8 +171,41 @@ static int pfm_fn(sink *s, int w, int h, const void *px)
     return 1;
 }
 
+static int jpg_fn(sink *s, int w, int h, const void *px)
+{
+    return stbi_write_jpg_to_func(sink_write, s, w, h, 4, px, 92);
+}
+
+/* The name's extension, lower-cased, or "" (at most 7 characters). */
+static void extension(const char *path, char *ext, size_t cap)
+{
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    ext[0] = 0;
+    if (!dot || (slash && dot < slash) || strlen(dot + 1) >= cap) return;
+    size_t i = 0;
+    for (const char *p = dot + 1; *p; p++) ext[i++] = (char)(*p >= 'A' && *p <= 'Z' ? *p + 32 : *p);
+    ext[i] = 0;
+}
+
+jd_picture_kind jd_picture_kind_of(const char *path, jd_error *err)
+{
+    char ext[8];
+    extension(path, ext, sizeof ext);
+    if (!strcmp(ext, "jpg") || !strcmp(ext, "jpeg")) return JD_PICTURE_JPEG;
+    static const char *const other[] = {"bmp", "gif", "tga", "tif", "tiff", "webp", "ppm", "pgm", "exr", "hdr", "pfm", "avif"};
+    for (size_t i = 0; i < sizeof other / sizeof other[0]; i++)
+        if (!strcmp(ext, other[i])) {
+            jd_fail(err, JD_ERR_ARG, "%s: jade writes pictures as PNG or JPEG (.png, .jpg), not .%s", path, ext);
+            return JD_PICTURE_NONE;
+        }
+    return JD_PICTURE_PNG;
+}
+
 jd_result jd_png_write(const char *path, int w, int h, const uint8_t *rgba, jd_error *err)
 {
+    jd_picture_kind k = jd_picture_kind_of(path, err);
+    if (k == JD_PICTURE_NONE) return JD_ERR_ARG;
+    if (k == JD_PICTURE_JPEG) return write_atomic(path, "JPEG", jpg_fn, w, h, rgba, err);
     return write_atomic(path, "PNG", png_fn, w, h, rgba, err);
 }
 

@@ -7,7 +7,13 @@
 #define JD_IMAGE_OUT_H
 #include <stdint.h>
 #include "jd_result.h"
+/* A picture of w*h RGBA pixels: JPEG (quality 92) when the name ends in .jpg
+ * or .jpeg, PNG otherwise; a name ending in another picture format's
+ * extension is refused rather than given a PNG under that name. */
 jd_result jd_png_write(const char *path, int w, int h, const uint8_t *rgba, jd_error *err);
+typedef enum { JD_PICTURE_NONE, JD_PICTURE_PNG, JD_PICTURE_JPEG } jd_picture_kind;
+/* What jd_png_write would write to `path`; JD_PICTURE_NONE and a reason. */
+jd_picture_kind jd_picture_kind_of(const char *path, jd_error *err);
 /* Little-endian colour PFM of w*h*3 floats given top row first (PFM files
  * store the bottom row first). */
 jd_result jd_pfm_write(const char *path, int w, int h, const float *rgb, jd_error *err);

@@ -31,7 +31,7 @@ typedef struct opt {
 #define K JD_OPT_KIOSK
 static const opt table[] = {
     {"--mesh", T_PATH, OFF(mesh), 0, 0, S, "FILE       Draco, OBJ, PLY or STL mesh, told apart by content [the default asset]"},
-    {"--out", T_PATH, OFF(out), 0, 0, RO | JD_OPT_REFERENCE, "FILE.png   output image [jade.png]"},
+    {"--out", T_PATH, OFF(out), 0, 0, RO | JD_OPT_REFERENCE, "FILE.png   output image, PNG, or JPEG when named .jpg [jade.png]"},
     {"--sheet", T_PATH, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual | full side by side, labelled"},
     {"--sheet-reference", T_PATH, OFF(sheet_ref), 0, 0, RO, "FILE.png   with --sheet: a reference picture as the first panel"},
     {"--pfm", T_PATH, OFF(pfm), 0, 0, JD_OPT_REFERENCE, "FILE.pfm   also write the linear picture (before the tone curve)"},
@@ -52,7 +52,7 @@ static const opt table[] = {
     {"--rotate", T_INT, OFF(rotation), 0, 270, K | RO, "DEG        0, 90, 180 or 270, counter-clockwise as DRM (portrait panels) [0]"},
     {"--size", T_SIZE, 0, 16, 4096, RO | V | K | B | JD_OPT_REFERENCE, "WxH        image or window size (drm: the mode) [512x512]"},
     {"--frames", T_INT, OFF(frames), 1, 100000000, R | B, "N          frames [render 1, bench 200, view/kiosk: until closed]"},
-    {"--mode", T_MODE, OFF(mode_list), 0, 0, R | B, "M          none|single|dual|full [full]; bench also: all"},
+    {"--mode", T_MODE, OFF(mode_list), 0, 0, R | B, "M          none|single|dual|full [full]; bench also all [bench: all]"},
     {"--material", T_STR, OFF(material), 0, 0, S, "NAME       measured material [marble]"},
     {"--sigma-s", T_FLOAT3, OFF(scene.sigma_s), 0, 1000, S, "R,G,B      reduced scattering, mm^-1"},
     {"--sigma-a", T_FLOAT3, OFF(scene.sigma_a), 0, 1000, S, "R,G,B      absorption, mm^-1"},

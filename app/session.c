@@ -85,7 +85,8 @@ static int mesh_path(jd_session *s, jd_options *o, const char *cmd)
     const char *outs[] = {o->out, o->sheet, o->pfm, o->mask_out, o->screenshot};
     for (size_t i = 0; i < sizeof outs / sizeof outs[0]; i++) {
         jd_error err = {0};
-        if (outs[i] && jd_output_check(outs[i], &err)) {
+        if (outs[i] && ((outs[i] != o->pfm && jd_picture_kind_of(outs[i], &err) == JD_PICTURE_NONE) ||
+                        jd_output_check(outs[i], &err))) {
             fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
             return 0;
         }

@@ -63,6 +63,10 @@ else
 fi
 expect "not a mesh" 1 "not a mesh jade reads" -- "$jade" render --mesh "$tmp/hello.drc" --out "$tmp/x.png"
 expect "unwritable output" 1 "cannot write there" -- "$jade" render --size 64x64 --out "$tmp/no/such/dir/x.png"
+expect "--out .jpg" 0 "wrote $tmp/pic.jpg" -- "$jade" render --size 32x32 --out "$tmp/pic.jpg"
+check_jpeg() { [ "$(head -c 3 "$tmp/pic.jpg" | od -An -tx1 | tr -d ' ')" = "ffd8ff" ]; }
+if check_jpeg; then pass=$((pass + 1)); echo "ok   a .jpg name gets a JPEG"; else fail=$((fail + 1)); echo "FAIL a .jpg name did not get a JPEG"; fi
+expect "--out .bmp" 1 "jade writes pictures as PNG or JPEG" -- "$jade" render --size 32x32 --out "$tmp/pic.bmp"
 expect "1920x1080 with the default budget" 0 "wrote $tmp/hd.png (1920x1080" -- "$jade" render --size 1920x1080 --out "$tmp/hd.png"
 rm -f "$tmp/hd.png"
 expect "tiny budget" 1 "memory budget exhausted" -- "$jade" render --budget-mb 1 --out "$tmp/x.png"
