@@ -10,6 +10,10 @@
 #include <stddef.h>
 #include "jd_result.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct jd_arena {
     unsigned char *base;
     size_t size;
@@ -33,5 +37,9 @@ void jd_arena_reset(jd_arena *a, size_t mark);
 
 size_t jd_arena_used(const jd_arena *a);
 size_t jd_arena_free_bytes(const jd_arena *a);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -4,6 +4,10 @@
 
 #include "jd_result.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct jd_gl_caps {
     char vendor[64], renderer[128], version[128], glsl[96];
     int max_texture_size, max_renderbuffer_size, max_cube_map_size;
@@ -39,5 +43,9 @@ int jd_gl_mediump_is_fp16(void);
  * needs no driver support. Costs four create/delete pairs; call it rarely. */
 typedef struct jd_gl_names { unsigned texture, buffer, framebuffer, renderbuffer; } jd_gl_names;
 void jd_gl_probe_names(jd_gl_names *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -4,6 +4,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum jd_result {
     JD_OK = 0,
     JD_ERR_ARG,         /* a caller passed a bad value */
@@ -36,5 +40,9 @@ jd_result jd_fail(jd_error *err, jd_result code, const char *fmt, ...)
     ;
 
 const char *jd_result_name(jd_result r);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

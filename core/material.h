@@ -3,6 +3,10 @@
 #ifndef JD_MATERIAL_H
 #define JD_MATERIAL_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct jd_material {
     const char *name;
     float sigma_s[3]; /* reduced scattering sigma_s' */
@@ -29,5 +33,9 @@ double jd_dipole_rd_total(double alpha, double A);
 double jd_dipole_tail(const jd_dipole *d, int channel, double t_mm);
 /* Diffusion profile Rd(r), r in mm. */
 double jd_dipole_rd(const jd_dipole *d, int channel, double r_mm);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

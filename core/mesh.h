@@ -6,6 +6,10 @@
 #include "arena.h"
 #include "vmath.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct jd_mesh {
     uint32_t num_vertices;
     uint32_t num_indices;   /* 3 per triangle */
@@ -54,5 +58,9 @@ jd_result jd_mesh_set_indices(jd_mesh *m, const uint32_t *idx, uint32_t count, i
  * light depth, the spread funnel). 16-bit indices always. */
 jd_result jd_mesh_build_proxy(const jd_mesh *src, int cells, jd_arena *a, jd_mesh *out,
                               jd_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

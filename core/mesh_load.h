@@ -7,6 +7,10 @@
 #include <stdint.h>
 #include "mesh.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Zero fields take the defaults in brackets. */
 typedef struct jd_load_desc {
     const char *path;
@@ -33,5 +37,9 @@ typedef struct jd_load_stats {
  * it. Call before creating threads (a GL context): the child forks. */
 jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out,
                              jd_load_stats *stats, jd_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -5,6 +5,10 @@
 
 #include "gl_caps.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct jd_profile {
     const char *name;
     const char *summary;
@@ -24,5 +28,9 @@ const jd_profile *jd_profile_find(const char *name);
 /* Lowers caps to the profile's limits (never raises them); masks the
  * extensions the device lacks. */
 void jd_profile_apply(const jd_profile *p, jd_gl_caps *caps);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -8,6 +8,10 @@
 #include "material.h"
 #include "mesh.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* none: direct light, shadowed; single: + the SCCG 2006 translucent layer;
  * dual: + the spread funnel (the paper); full: the direct light diffused under
  * the surface with the dipole's profile (jade's own, measured against
@@ -124,5 +128,9 @@ const jd_mesh *jd_renderer_proxy(const jd_renderer *r);
  * and the 27 packed SH pixels, for tests against the CPU reference. */
 jd_result jd_renderer_read_capture(jd_renderer *r, uint8_t *atlas, uint8_t *sh27, int *n,
                                    jd_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -2,6 +2,10 @@
 #ifndef JD_VMATH_H
 #define JD_VMATH_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct jd_vec3 { float x, y, z; } jd_vec3;
 typedef struct jd_mat4 { float m[16]; } jd_mat4;
 
@@ -22,5 +26,9 @@ jd_mat4 jd_m4_look_at(jd_vec3 eye, jd_vec3 target, jd_vec3 up);
 jd_mat4 jd_m4_perspective(float fovy_deg, float aspect, float znear, float zfar);
 jd_mat4 jd_m4_ortho(float l, float r, float b, float t, float n, float f);
 jd_vec3 jd_m4_point(jd_mat4 m, jd_vec3 p); /* with perspective divide */
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -6,6 +6,10 @@
 #include <stdint.h>
 #include "jd_result.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct jd_platform jd_platform;
 
 /* Zero fields take the defaults in brackets. */
@@ -68,5 +72,9 @@ void jd_platform_close(jd_platform *p);
  * JD_EVENT_QUIT, so a kiosk always gets to restore the display. */
 void jd_quit_on_signals(void);
 int jd_quit_requested(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -26,5 +26,15 @@ if cc $san -o "$tmp/consumer_pc" "$src/consumer/consumer.c" $(pkg-config --cflag
 else
     fail=$((fail + 1)); echo "FAIL pkg-config"; cat "$tmp/log"
 fi
+# The same program as C++ (every installed header wraps itself in extern "C").
+if command -v c++ >/dev/null; then
+    if c++ -std=c++20 -x c++ $san -o "$tmp/consumer_cxx" "$src/consumer/consumer.c" -x none \
+           $(pkg-config --cflags --libs jade-platform) >"$tmp/log" 2>&1 &&
+       LD_LIBRARY_PATH="$tmp/prefix/lib" "$tmp/consumer_cxx" "$mesh"; then
+        pass=$((pass + 1)); echo "ok   the same program as C++20"
+    else
+        fail=$((fail + 1)); echo "FAIL C++"; cat "$tmp/log"
+    fi
+fi
 echo "consumer: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,5 +1,7 @@
 /* A program of an integrator's, built against the installed jade: budget,
- * load, context, renderer, one frame, one pixel read back. */
+ * load, context, renderer, one frame, one pixel read back. Written to be
+ * both C11 and C++20, and built as both: the installed headers must serve
+ * a C++ program. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -10,10 +12,10 @@ int main(int argc, char **argv)
 {
     if (argc < 2) { fprintf(stderr, "usage: consumer MESH.drc\n"); return 2; }
     size_t budget = 8u << 20;
-    void *mem = malloc(budget);
+    unsigned char *mem = (unsigned char *)malloc(budget);
     jd_arena arena;
     jd_arena_init(&arena, mem, budget);
-    jd_error err = {0};
+    jd_error err = {JD_OK, {0}};
     jd_mesh mesh;
     jd_load_desc ld = {.path = argv[1]};
     jd_platform *p = NULL;
