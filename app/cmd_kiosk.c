@@ -47,7 +47,11 @@ int jd_cmd_kiosk(int argc, char **argv)
     if (rc >= 0) return rc;
     jd_quit_on_signals();
     jd_session s;
-    if (!jd_session_open(&s, &o, "kiosk")) { jd_session_close(&s); return 1; }
+    if (!jd_session_open(&s, &o, "kiosk")) {
+        int stopped = s.stopped;
+        jd_session_close(&s);
+        return stopped ? 0 : 1;
+    }
     jd_error err = {0};
     double *times = jd_arena_alloc(&s.arena, sizeof(double) * KIOSK_SAMPLES, 16, "kiosk frame times", &err);
     double *sorted = jd_arena_alloc(&s.arena, sizeof(double) * KIOSK_SAMPLES, 16, "kiosk frame times", &err);

@@ -48,6 +48,7 @@ static const opt table[] = {
     {"--drm-device", T_PATH, OFF(drm_device), 0, 0, K, "PATH       [the first KMS-capable /dev/dri/card*]"},
     {"--connector", T_STR, OFF(connector), 0, 0, K, "NAME       e.g. HDMI-A-1 [the first connected]"},
     {"--display-mode", T_STR, OFF(display_mode), 0, 0, K, "WxH[@Hz]   [the preferred mode, else the largest]"},
+    {"--wait-display", T_FLAG, OFF(wait_display), 0, 0, K, "           no display yet (or held by another): wait for one, retrying every second"},
     {"--atomic", T_FLAG, OFF(atomic), 0, 0, K, "           atomic modesetting (where the driver has it)"},
     {"--rotate", T_INT, OFF(rotation), 0, 270, K | RO, "DEG        0, 90, 180 or 270, counter-clockwise as DRM (portrait panels) [0]"},
     {"--size", T_SIZE, 0, 16, 4096, RO | V | K | B | JD_OPT_REFERENCE, "WxH        image or window size (drm: the mode) [512x512]"},

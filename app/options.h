@@ -26,6 +26,7 @@ typedef struct jd_options {
     const char *drm_device, *connector, *display_mode;
     int rotation;
     int atomic;
+    int wait_display;
     int width, height;
     int frames;
     int budget_mb;

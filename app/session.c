@@ -113,6 +113,37 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
     return jd_session_open_with(s, o, cmd, log_driver, (void *)cmd);
 }
 
+/* Probes (open = 0) or opens (1) the platform; with --wait-display, tries
+ * again every second, saying so once, until it works or a signal asks to
+ * stop (s->stopped). */
+static int wait_for(jd_session *s, jd_options *o, const char *cmd, const jd_platform_desc *pd, int open)
+{
+    int said = 0;
+    for (;;) {
+        jd_error err = {0};
+        jd_result r = open ? jd_platform_open(pd, &s->platform, &err) : jd_platform_probe(pd, &err);
+        if (r == JD_OK) {
+            if (said) fprintf(stderr, "jade %s: the display is there now\n", cmd);
+            return 1;
+        }
+        if (!o->wait_display) {
+            fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+            return 0;
+        }
+        if (!said) fprintf(stderr, "jade %s: waiting for a display (%s)\n", cmd, err.msg);
+        said = 1;
+        for (int i = 0; i < 10; i++) {
+            if (jd_quit_requested()) {
+                s->stopped = 1;
+                fprintf(stderr, "jade %s: stopped while waiting for a display\n", cmd);
+                return 0;
+            }
+            struct timespec ts = {0, 100 * 1000 * 1000};
+            nanosleep(&ts, NULL);
+        }
+    }
+}
+
 int jd_session_open_with(jd_session *s, jd_options *o, const char *cmd, jd_gl_log_fn log, void *log_user)
 {
     memset(s, 0, sizeof *s);
@@ -123,16 +154,12 @@ int jd_session_open_with(jd_session *s, jd_options *o, const char *cmd, jd_gl_lo
                            .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode,
                            .single_sample = o->rdesc.antialias == JD_AA_OFF,
                            .atomic = o->atomic};
-    /* No display, no point decoding: say so at once. */
-    if (jd_platform_probe(&pd, &err)) {
-        fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
-        return 0;
-    }
+    /* No display, no point decoding: say so at once (or, with
+     * --wait-display, wait for one: systemd may start the kiosk before the
+     * panel is on or the display server has let go of it). */
+    if (!wait_for(s, o, cmd, &pd, 0)) return 0;
     if (!load_mesh(s, o, cmd)) return 0;
-    if (jd_platform_open(&pd, &s->platform, &err)) {
-        fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
-        return 0;
-    }
+    if (!wait_for(s, o, cmd, &pd, 1)) return 0;
     if (log) jd_gl_debug_enable(jd_platform_gl_proc, log, log_user);
     /* The drawable decides the size (a display mode, a window). */
     jd_platform_size(s->platform, &o->width, &o->height);

@@ -15,6 +15,7 @@ typedef struct jd_session {
     jd_mesh mesh;
     jd_load_stats load;
     char mesh_path[4096];
+    int stopped; /* a signal came while --wait-display waited: not a failure */
     jd_platform *platform;
     jd_gl_caps caps;
     jd_renderer *renderer;

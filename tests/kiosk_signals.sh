@@ -36,6 +36,23 @@ run headless TERM
 run headless INT
 run headless TERM+TERM
 run headless INT+TERM
+# --wait-display with no display: it waits (systemd may start it before the
+# panel), says so once, and a signal ends the wait cleanly.
+"$jade" kiosk --wait-display --drm-device "$out/no-such-card" > "$out/kiosk_wait.txt" 2>&1 &
+pid=$!
+sleep 1.5
+kill -TERM "$pid"
+( sleep 10; kill -KILL "$pid" 2>/dev/null ) &
+guard=$!
+wait "$pid"
+rc=$?
+kill "$guard" 2>/dev/null
+if [ "$rc" -eq 0 ] && [ "$(grep -c ': waiting for a display' "$out/kiosk_wait.txt")" -eq 1 ] &&
+   grep -q "stopped while waiting" "$out/kiosk_wait.txt"; then
+    pass=$((pass + 1)); echo "ok   --wait-display waits, says so once, and SIGTERM ends the wait: exit 0"
+else
+    fail=$((fail + 1)); echo "FAIL --wait-display: exit $rc"; cat "$out/kiosk_wait.txt"
+fi
 if command -v Xvfb >/dev/null; then
     xvfb_first=95
     . "$(dirname "$0")/xvfb.sh"
