@@ -564,10 +564,11 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
      * and Mali-400 (lima spills 33 values) hold, so those take 2x2 blocks
      * and one more reduction pass (tools/device-shaders.sh measures it). */
     r->sh_block = d->caps->small_register_file ? SH_BLOCK_SMALL : SH_BLOCK;
-    if (d->cube_size < 8 || d->cube_size > 256 || d->cube_size % (8 * r->sh_block))
-        return jd_fail(err, JD_ERR_ARG, "cube size %d must be a multiple of %d from 8 to 256", d->cube_size,
-                       8 * r->sh_block);
-    r->sh_mid = d->cube_size / r->sh_block > 8 ? d->cube_size / r->sh_block / 8 : 1;
+    if (d->cube_size < 8 || d->cube_size > 256 || d->cube_size % SH_BLOCK)
+        return jd_fail(err, JD_ERR_ARG, "cube size %d must be a multiple of %d from 8 to 256", d->cube_size, SH_BLOCK);
+    /* More than 8x8 blocks per face: a first reduction down to 8x8. */
+    int blocks = d->cube_size / r->sh_block;
+    r->sh_mid = blocks > 8 && blocks % 8 == 0 ? blocks / 8 : 1;
     if (d->light_map_size < 16 || d->light_map_size > 2048)
         return jd_fail(err, JD_ERR_ARG, "light map size %d must be 16..2048", d->light_map_size);
     if (d->diffusion_size < 16 || d->diffusion_size > d->light_map_size)

@@ -50,6 +50,8 @@ expect "bad material" 2 "unknown material 'jelly'" -- "$jade" render --material 
 expect "bad number" 2 "expected a number" -- "$jade" render --eta 1.3x
 expect "nan number" 2 "expected a number" -- "$jade" render --eta nan
 expect "bad triple" 2 "three numbers" -- "$jade" render --sigma-a 1,2
+expect "cube size 32" 0 "wrote" -- "$jade" render --cube-size 32 --mode dual --size 32x32 --out "$tmp/c32.png"
+expect "cube size 32, vc4" 0 "wrote" -- "$jade" render --cube-size 32 --mode dual --size 32x32 --profile vc4 --out "$tmp/c32.png"
 expect "bad cube size" 2 "multiple of 8" -- "$jade" render --cube-size 60
 expect "missing mesh" 1 "cannot open" -- "$jade" render --mesh "$tmp/nope.drc" --out "$tmp/x.png"
 printf 'hello' > "$tmp/hello.drc"
