@@ -238,21 +238,26 @@ static void free_target(target *t)
 
 /* Positions normalised to the bounding sphere (centre 0, radius 1) keep
  * coordinates small for fp16 varyings; interleaved with normals. */
+/* One vertex as uploaded: the position centred and scaled to the unit
+ * sphere, then the normal. */
+static void pack_vertex(float *o, const jd_mesh *m, uint32_t i, jd_vec3 c, float inv_r)
+{
+    const float *p = m->positions + 3 * (size_t)i, *n = m->normals + 3 * (size_t)i;
+    o[0] = (p[0] - c.x) * inv_r;
+    o[1] = (p[1] - c.y) * inv_r;
+    o[2] = (p[2] - c.z) * inv_r;
+    o[3] = n[0];
+    o[4] = n[1];
+    o[5] = n[2];
+}
+
 static jd_result upload_mesh(const jd_mesh *m, jd_vec3 c, float inv_r, GLuint *vbo, GLuint *ibo,
                              jd_arena *a, jd_error *err)
 {
     size_t top = jd_arena_top_mark(a);
     float *v = jd_arena_alloc_top(a, sizeof(float) * 6 * m->num_vertices, 16, "vertex upload scratch", err);
     if (!v) return JD_ERR_BUDGET;
-    for (uint32_t i = 0; i < m->num_vertices; i++) {
-        const float *p = m->positions + 3 * i, *n = m->normals + 3 * i;
-        v[6 * i + 0] = (p[0] - c.x) * inv_r;
-        v[6 * i + 1] = (p[1] - c.y) * inv_r;
-        v[6 * i + 2] = (p[2] - c.z) * inv_r;
-        v[6 * i + 3] = n[0];
-        v[6 * i + 4] = n[1];
-        v[6 * i + 5] = n[2];
-    }
+    for (uint32_t i = 0; i < m->num_vertices; i++) pack_vertex(v + 6 * (size_t)i, m, i, c, inv_r);
     glGenBuffers(1, vbo);
     glBindBuffer(GL_ARRAY_BUFFER, *vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6 * m->num_vertices), v, GL_STATIC_DRAW);
@@ -276,13 +281,13 @@ static jd_result upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c
     size_t max_chunks = (size_t)m->num_indices / 3 / (limit / 3) + 2;
     int32_t *local = jd_arena_alloc_top(a, sizeof(int32_t) * m->num_vertices, 16, "chunk vertex map", err);
     uint32_t *used = jd_arena_alloc_top(a, sizeof(uint32_t) * limit, 16, "chunk vertex list", err);
-    float *v = jd_arena_alloc_top(a, sizeof(float) * 6 * (m->num_indices < (size_t)m->num_vertices * 2
-                                                              ? m->num_indices : (size_t)m->num_vertices * 2),
-                                  16, "chunked vertex upload", err);
+    /* Copies: at most one per index, and in practice far fewer than twice
+     * the vertices (a chunk repeats only its border). */
+    size_t v_cap = m->num_indices < (size_t)m->num_vertices * 2 ? m->num_indices : (size_t)m->num_vertices * 2;
+    float *v = jd_arena_alloc_top(a, sizeof(float) * 6 * v_cap, 16, "chunked vertex upload", err);
     uint16_t *ix = jd_arena_alloc_top(a, sizeof(uint16_t) * m->num_indices, 16, "chunked index upload", err);
     r->chunks = jd_arena_alloc(a, sizeof *r->chunks * max_chunks, 16, "mesh chunks", err);
     if (!local || !used || !v || !ix || !r->chunks) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
-    size_t v_cap = m->num_indices < (size_t)m->num_vertices * 2 ? m->num_indices : (size_t)m->num_vertices * 2;
     for (uint32_t i = 0; i < m->num_vertices; i++) local[i] = -1;
     size_t nv = 0, ni = 0;
     uint32_t n_used = 0;
@@ -304,10 +309,7 @@ static jd_result upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c
         for (int k = 0; k < 3; k++) {
             if (local[tri[k]] < 0) {
                 if (nv == v_cap) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_BUDGET, "mesh chunks: vertex copies over the scratch"); }
-                const float *p = m->positions + 3 * (size_t)tri[k], *n = m->normals + 3 * (size_t)tri[k];
-                float *o = v + 6 * nv++;
-                o[0] = (p[0] - c.x) * inv_r; o[1] = (p[1] - c.y) * inv_r; o[2] = (p[2] - c.z) * inv_r;
-                o[3] = n[0]; o[4] = n[1]; o[5] = n[2];
+                pack_vertex(v + 6 * nv++, m, tri[k], c, inv_r);
                 local[tri[k]] = (int32_t)n_used;
                 used[n_used++] = tri[k];
             }
@@ -894,19 +896,17 @@ static void bind_quad(const jd_renderer *r)
 }
 
 /* The scissor keeps clears to the used corner of a power-of-two target. */
-static jd_renderer *counting; /* the renderer whose frame is being drawn, for the counters */
-
-static void count_target(int w, int h)
+/* Every render-target switch of a frame passes here, and is counted. */
+static void count_target(jd_renderer *r, int w, int h)
 {
-    if (!counting) return;
-    counting->n_switches++;
-    counting->n_fragments += (double)w * h;
-    counting->n_bytes += (double)w * h * 4.0;
+    r->n_switches++;
+    r->n_fragments += (double)w * h;
+    r->n_bytes += (double)w * h * 4.0;
 }
 
-static void use_target(const target *t)
+static void use_target(jd_renderer *r, const target *t)
 {
-    count_target(t->w, t->h);
+    count_target(r, t->w, t->h);
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
     glViewport(0, 0, t->w, t->h);
     glScissor(0, 0, t->w, t->h);
@@ -914,7 +914,7 @@ static void use_target(const target *t)
 
 static void pass_light_depth(jd_renderer *r, const frame_params *f)
 {
-    use_target(&r->light);
+    use_target(r, &r->light);
     glClearColor(1, 0, 0, 0); /* packed 1.0: nothing in front; no light */
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
@@ -932,7 +932,7 @@ static void pass_capture(jd_renderer *r, const frame_params *f)
 {
     int n = r->d.cube_size;
     float h = r->box_half;
-    use_target(&r->atlas);
+    use_target(r, &r->atlas);
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
@@ -958,11 +958,10 @@ static void pass_capture(jd_renderer *r, const frame_params *f)
     }
 }
 
-static void draw_quad_into(const jd_renderer *r, const target *t)
+static void draw_quad_into(jd_renderer *r, const target *t)
 {
-    use_target(t);
+    use_target(r, t);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    (void)r;
 }
 
 /* A polynomial in (1, fx, fy, fx^2, fy^2, fx fy). */
@@ -1052,7 +1051,7 @@ static jd_result build_projection_quads(jd_renderer *r, jd_arena *a, jd_error *e
     return glGetError() == GL_NO_ERROR ? JD_OK : jd_fail(err, JD_ERR_GL, "SH projection upload failed");
 }
 
-static void draw_projection(const jd_renderer *r)
+static void draw_projection(jd_renderer *r)
 {
     glBindBuffer(GL_ARRAY_BUFFER, r->project_vbo);
     static const int sizes[5] = {2, 4, 4, 3, 4};
@@ -1063,7 +1062,7 @@ static void draw_projection(const jd_renderer *r)
                               (const void *)(at * sizeof(float)));
         at += (size_t)sizes[i];
     }
-    use_target(&r->sh1);
+    use_target(r, &r->sh1);
     glDrawArrays(GL_TRIANGLES, 0, 6 * 6 * 27);
     for (GLuint i = 2; i < 5; i++) glDisableVertexAttribArray(i);
     bind_quad(r);
@@ -1191,29 +1190,29 @@ static void blur(jd_renderer *r, GLint step_loc, GLint inv_loc, const target *sr
 }
 
 /* A low-resolution layer drawn with a shading program: cleared to "not
- * covered" (alpha 0), depth-tested, culled as the main pass. */
-static void draw_layer(jd_renderer *r, const target *t, const shade_prog *p, const frame_params *f, GLuint vbo,
-                       GLuint ibo, uint32_t count, GLenum index_type)
+ * covered" (alpha 0), depth-tested, culled as the main pass; of the whole
+ * mesh (full's levels) or of the coarse capture proxy (the spread's A0). */
+static void draw_layer(jd_renderer *r, const target *t, const shade_prog *p, const frame_params *f, int whole_mesh)
 {
-    use_target(t);
+    use_target(r, t);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
     set_shade_uniforms(r, p, f, t->w, t->h);
-    if (vbo == r->mesh_vbo) {
+    if (whole_mesh) {
         draw_mesh(r);
-        return;
+    } else {
+        bind_mesh(r->cap_vbo, r->cap_ibo);
+        glDrawElements(GL_TRIANGLES, (GLsizei)r->capture_proxy.num_indices, GL_UNSIGNED_SHORT, 0);
     }
-    bind_mesh(vbo, ibo);
-    glDrawElements(GL_TRIANGLES, (GLsizei)count, index_type, 0);
 }
 
 static void pass_spread(jd_renderer *r, const frame_params *f)
 {
     /* A0 at low resolution from the coarse capture proxy: these layers are
      * blurred, so a finer mesh would buy nothing but vertex work. */
-    draw_layer(r, &r->spread0, &r->a0, f, r->cap_vbo, r->cap_ibo, r->capture_proxy.num_indices, GL_UNSIGNED_SHORT);
+    draw_layer(r, &r->spread0, &r->a0, f, 0);
 
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -1298,12 +1297,12 @@ static void pass_diffusion(jd_renderer *r, const frame_params *f)
  * main pass. */
 static void pass_wide(jd_renderer *r, const frame_params *f)
 {
-    draw_layer(r, &r->wide, &r->wide_prog, f, r->mesh_vbo, r->mesh_ibo, r->d.mesh->num_indices, r->mesh_index_type);
+    draw_layer(r, &r->wide, &r->wide_prog, f, 1);
 }
 
 static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
-    count_target(r->d.width, r->d.height);
+    count_target(r, r->d.width, r->d.height);
     glBindFramebuffer(GL_FRAMEBUFFER, r->post_aa ? r->scene.fbo : r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
     glScissor(0, 0, r->d.width, r->d.height);
@@ -1322,7 +1321,7 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
  * more) is filtered; the rest is background, cleared. */
 static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
-    count_target(r->d.width, r->d.height);
+    count_target(r, r->d.width, r->d.height);
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
     glScissor(0, 0, r->d.width, r->d.height);
@@ -1421,7 +1420,6 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     int light_still = r->light_key_valid && !memcmp(lk, r->light_key, sizeof lk);
     int view_still = light_still && r->view_key_valid && !memcmp(vk, r->view_key, sizeof vk);
     r->light_key_valid = r->view_key_valid = 0; /* set again once this frame has succeeded */
-    counting = r;
     r->n_switches = r->n_readbacks = 0;
     r->n_fragments = r->n_bytes = 0;
     /* Every mode shadows its direct light with the light-depth map. */
@@ -1452,7 +1450,6 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
             jd_result res = pass_sh(r, &f, err);
             if (res) {
                 if (r->tq.ok && r->tq.used[JD_PASS_SH]) r->tq.end(GL_TIME_ELAPSED_EXT);
-                counting = NULL;
                 return res;
             }
             r->last_sh = f.sh;
@@ -1469,7 +1466,6 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     if (r->post_aa) pass_antialias(r, s, &f);
     lap(r, stats, JD_PASS_MAIN, &t);
     gpu_collect(r, stats);
-    counting = NULL;
     if (stats) {
         memcpy(stats->sh, f.sh.c, sizeof stats->sh);
         stats->blur_sigma_px = f.blur_sigma_px;
