@@ -108,11 +108,6 @@ static void log_driver(void *user, const char *kind, const char *msg)
         fprintf(stderr, "jade %s: GL driver %s: %s\n", (const char *)user, kind, msg);
 }
 
-int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
-{
-    return jd_session_open_with(s, o, cmd, log_driver, (void *)cmd);
-}
-
 /* Probes (open = 0) or opens (1) the platform; with --wait-display, tries
  * again every second, saying so once, until it works or a signal asks to
  * stop (s->stopped). */
@@ -144,7 +139,7 @@ static int wait_for(jd_session *s, jd_options *o, const char *cmd, const jd_plat
     }
 }
 
-int jd_session_open_with(jd_session *s, jd_options *o, const char *cmd, jd_gl_log_fn log, void *log_user)
+int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
 {
     memset(s, 0, sizeof *s);
     s->t_start_ms = jd_now_ms();
@@ -160,7 +155,7 @@ int jd_session_open_with(jd_session *s, jd_options *o, const char *cmd, jd_gl_lo
     if (!wait_for(s, o, cmd, &pd, 0)) return 0;
     if (!load_mesh(s, o, cmd)) return 0;
     if (!wait_for(s, o, cmd, &pd, 1)) return 0;
-    if (log) jd_gl_debug_enable(jd_platform_gl_proc, log, log_user);
+    jd_gl_debug_enable(jd_platform_gl_proc, log_driver, (void *)cmd);
     /* The drawable decides the size (a display mode, a window). */
     jd_platform_size(s->platform, &o->width, &o->height);
     if (jd_gl_caps_query(&s->caps, &err)) {

@@ -3,7 +3,6 @@
 #ifndef JD_SESSION_H
 #define JD_SESSION_H
 
-#include "gl_debug.h"
 #include "gl_caps.h"
 #include "options.h"
 #include "platform.h"
@@ -25,9 +24,6 @@ typedef struct jd_session {
 double jd_now_ms(void);
 /* Returns 0 after printing a one-line error. */
 int jd_session_open(jd_session *s, jd_options *o, const char *cmd);
-/* The same, the GL driver's own messages (GL_KHR_debug, where the driver
- * has it) going to `log`; jd_session_open logs its warnings to stderr. */
-int jd_session_open_with(jd_session *s, jd_options *o, const char *cmd, jd_gl_log_fn log, void *log_user);
 /* Only the mesh, for commands without a display (the reference). */
 int jd_session_open_mesh(jd_session *s, jd_options *o, const char *cmd);
 void jd_session_close(jd_session *s);
