@@ -1305,11 +1305,20 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
     count_target(r, r->d.width, r->d.height);
     glBindFramebuffer(GL_FRAMEBUFFER, r->post_aa ? r->scene.fbo : r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
-    glScissor(0, 0, r->d.width, r->d.height);
+    /* The anti-aliasing pass reads one texel past the frame's right and top
+     * edges: where the texture is larger than the frame (power-of-two
+     * sizes, a window made smaller), that texel is cleared too, or the
+     * edge column takes whatever the texture held. */
+    if (r->post_aa)
+        glScissor(0, 0, r->d.width < r->scene.tw ? r->d.width + 1 : r->d.width,
+                  r->d.height < r->scene.th ? r->d.height + 1 : r->d.height);
+    else
+        glScissor(0, 0, r->d.width, r->d.height);
     float bg[3];
     for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f)); /* display gamma 2, as the shader */
     glClearColor(bg[0], bg[1], bg[2], 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glScissor(0, 0, r->d.width, r->d.height);
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
     set_shade_uniforms(r, &r->shade[s->mode], f, r->d.width, r->d.height);
