@@ -80,6 +80,18 @@ int jd_cmd_info(int argc, char **argv)
     int rc = jd_options_command(&o, JD_OPT_INFO, "info", summary, argc, argv);
     if (rc >= 0) return rc;
     if (o.compile_only) return compile_all(&o);
+    if (o.list_materials) {
+        printf("%-10s %-22s %-25s %-4s %s\n", "material", "sigma_s' (mm^-1, RGB)", "sigma_a (mm^-1, RGB)", "eta",
+               "source");
+        for (int m = 0; m < jd_material_count; m++) {
+            const jd_material *t = &jd_materials[m];
+            char s1[40], s2[40];
+            snprintf(s1, sizeof s1, "%g %g %g", t->sigma_s[0], t->sigma_s[1], t->sigma_s[2]);
+            snprintf(s2, sizeof s2, "%g %g %g", t->sigma_a[0], t->sigma_a[1], t->sigma_a[2]);
+            printf("%-10s %-22s %-25s %-4g %s\n", t->name, s1, s2, t->eta, t->source);
+        }
+        return 0;
+    }
     const jd_profile *prof = o.profile ? jd_profile_find(o.profile) : NULL;
     jd_error err = {0};
     jd_platform *p = NULL;

@@ -2,6 +2,7 @@
  * of choice; drag to orbit, scroll to zoom, keys for mode, material, light. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <math.h>
 #include <string.h>
 
 #include "commands.h"
@@ -9,6 +10,17 @@
 
 static const char keys_help[] =
     "keys: m mode, n material, l light orbit on/off, [ ] turn the light, + - zoom, s screenshot, q or Esc quit";
+
+/* Zooming starts from where the fitted camera stands, not from "fit". */
+static void zoom(jd_scene *sc, const jd_mesh *m, int w, int h, float by)
+{
+    if (sc->cam_distance <= 0) {
+        jd_scene_view v;
+        jd_scene_view_of(sc, m, (float)w / (float)h, &v);
+        sc->cam_distance = v.cam_distance;
+    }
+    sc->cam_distance = fminf(fmaxf(sc->cam_distance * by, 1.3f), 20.0f);
+}
 
 int jd_cmd_view(int argc, char **argv)
 {
@@ -53,7 +65,7 @@ int jd_cmd_view(int argc, char **argv)
                 if (sc.cam_elevation > 85) sc.cam_elevation = 85;
                 if (sc.cam_elevation < -85) sc.cam_elevation = -85;
             } else if (ev.type == JD_EVENT_SCROLL) {
-                sc.cam_distance *= ev.dy > 0 ? 0.9f : 1.1f;
+                zoom(&sc, &s.mesh, w, h, ev.dy > 0 ? 0.9f : 1.1f);
             } else if (ev.type == JD_EVENT_KEY) {
                 switch (ev.key) {
                 case 'q': case 27: quit = 1; break;
@@ -70,15 +82,13 @@ int jd_cmd_view(int argc, char **argv)
                 case 'l': orbit = !orbit; break;
                 case '[': sc.light_azimuth -= 15; break;
                 case ']': sc.light_azimuth += 15; break;
-                case '+': case '=': sc.cam_distance *= 0.9f; break;
-                case '-': sc.cam_distance *= 1.1f; break;
+                case '+': case '=': zoom(&sc, &s.mesh, w, h, 0.9f); break;
+                case '-': zoom(&sc, &s.mesh, w, h, 1.1f); break;
                 case 's': snap = 1; break;
                 default: break;
                 }
             }
         }
-        if (sc.cam_distance < 1.3f) sc.cam_distance = 1.3f;
-        if (sc.cam_distance > 20.0f) sc.cam_distance = 20.0f;
         if (quit) break;
         if (orbit) sc.light_azimuth += 3.0f;
         if (jd_renderer_frame(s.renderer, &sc, NULL, &err)) { fprintf(stderr, "jade view: %s\n", err.msg); rc = 1; break; }

@@ -9,5 +9,6 @@ int jd_cmd_view(int argc, char **argv);
 int jd_cmd_kiosk(int argc, char **argv);
 int jd_cmd_metric(int argc, char **argv);
 int jd_cmd_reference(int argc, char **argv);
+int jd_cmd_convert(int argc, char **argv);
 int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px);
 #endif

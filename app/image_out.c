@@ -209,6 +209,20 @@ jd_result jd_png_write(const char *path, int w, int h, const uint8_t *rgba, jd_e
     return write_atomic(path, "PNG", png_fn, w, h, rgba, err);
 }
 
+static int bytes_fn(sink *s, int w, int h, const void *px)
+{
+    /* The byte count comes as w * h with h = 1 chunk per call below. */
+    (void)h;
+    sink_write(s, (void *)px, w);
+    return 1;
+}
+
+jd_result jd_bytes_write(const char *path, const char *kind, const void *data, size_t n, jd_error *err)
+{
+    if (n > INT_MAX) return jd_fail(err, JD_ERR_LIMIT, "%s: %zu bytes are more than jade writes in one file", path, n);
+    return write_atomic(path, kind, bytes_fn, (int)n, 1, data, err);
+}
+
 jd_result jd_pfm_write(const char *path, int w, int h, const float *rgb, jd_error *err)
 {
     return write_atomic(path, "PFM", pfm_fn, w, h, rgb, err);

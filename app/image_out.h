@@ -17,6 +17,8 @@ jd_picture_kind jd_picture_kind_of(const char *path, jd_error *err);
 /* Little-endian colour PFM of w*h*3 floats given top row first (PFM files
  * store the bottom row first). */
 jd_result jd_pfm_write(const char *path, int w, int h, const float *rgb, jd_error *err);
+/* Any other file (kind names it in messages), written the same way. */
+jd_result jd_bytes_write(const char *path, const char *kind, const void *data, size_t n, jd_error *err);
 /* Remembers a file the run reads, so no output replaces it. */
 void jd_output_protect(const char *path);
 /* Whether `path` may be written: absent, or a regular file that is not an

@@ -14,13 +14,14 @@ static void usage(FILE *f)
     fprintf(f,
             "usage: jade <command> [options]\n\n"
             "commands:\n"
-            "  render   render a Draco mesh in translucent material to a PNG\n"
+            "  render   render a mesh in translucent material to a PNG\n"
             "  bench    time none/single/dual with an orbiting light, print JSON\n"
             "  view     an X11 window with the scene, under a device profile if asked\n"
             "  kiosk    fullscreen on DRM/KMS (no desktop), frame statistics at the end\n"
             "  info     print the GL device's limits and usable extensions\n"
             "  reference render the same scene on the CPU with the full dipole BSSRDF (slow, exact)\n"
-            "  metric   compare a picture with a reference in linear light (RMSE, PSNR, SSIM)\n\n"
+            "  metric   compare a picture with a reference in linear light (RMSE, PSNR, SSIM)\n"
+            "  convert  turn a glTF, OBJ, PLY or STL mesh into a Draco file\n\n"
             "'jade <command> --help' lists a command's options.\n");
 }
 
@@ -48,6 +49,7 @@ int main(int argc, char **argv)
     if (!strcmp(c, "kiosk")) return jd_cmd_kiosk(argc, argv);
     if (!strcmp(c, "metric")) return jd_cmd_metric(argc, argv);
     if (!strcmp(c, "reference")) return jd_cmd_reference(argc, argv);
+    if (!strcmp(c, "convert")) return jd_cmd_convert(argc, argv);
     fprintf(stderr, "jade: unknown command '%s' (see jade --help)\n", c);
     return 2;
 }

@@ -3,6 +3,9 @@
 #include "profile.h"
 
 #include <errno.h>
+#include <unistd.h>
+#include <sys/stat.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -30,7 +33,7 @@ typedef struct opt {
 #define V JD_OPT_VIEW
 #define K JD_OPT_KIOSK
 static const opt table[] = {
-    {"--mesh", T_PATH, OFF(mesh), 0, 0, S, "FILE       Draco, OBJ, PLY or STL mesh, told apart by content [the default asset]"},
+    {"--mesh", T_PATH, OFF(mesh), 0, 0, S, "FILE       Draco, glTF/GLB, OBJ, PLY or STL mesh, told apart by content [the default asset]"},
     {"--out", T_PATH, OFF(out), 0, 0, RO | JD_OPT_REFERENCE, "FILE.png   output image, PNG, or JPEG when named .jpg [jade.png]"},
     {"--sheet", T_PATH, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual | full side by side, labelled"},
     {"--sheet-reference", T_PATH, OFF(sheet_ref), 0, 0, RO, "FILE.png   with --sheet: a reference picture as the first panel"},
@@ -48,22 +51,28 @@ static const opt table[] = {
     {"--drm-device", T_PATH, OFF(drm_device), 0, 0, K, "PATH       [the first KMS-capable /dev/dri/card*]"},
     {"--connector", T_STR, OFF(connector), 0, 0, K, "NAME       e.g. HDMI-A-1 [the first connected]"},
     {"--display-mode", T_STR, OFF(display_mode), 0, 0, K, "WxH[@Hz]   [the preferred mode, else the largest]"},
+    {"--config", T_PATH, OFF(config), 0, 0, K, "FILE       options as 'key = value' lines (keys as these options, without --); re-read on SIGHUP"},
+    {"--idle", T_FLOAT, OFF(idle_s), 0, 86400, K, "S          after S seconds without touch or mouse the camera returns to its place [30]"},
     {"--wait-display", T_FLAG, OFF(wait_display), 0, 0, K, "           no display yet (or held by another): wait for one, retrying every second"},
     {"--atomic", T_FLAG, OFF(atomic), 0, 0, K, "           atomic modesetting (where the driver has it)"},
     {"--rotate", T_INT, OFF(rotation), 0, 270, K | RO, "DEG        0, 90, 180 or 270, counter-clockwise as DRM (portrait panels) [0]"},
     {"--size", T_SIZE, 0, 16, 4096, RO | V | K | B | JD_OPT_REFERENCE, "WxH        image or window size (drm: the mode) [512x512]"},
     {"--frames", T_INT, OFF(frames), 1, 100000000, R | B, "N          frames [render 1, bench 200, view/kiosk: until closed]"},
     {"--mode", T_MODE, OFF(mode_list), 0, 0, R | B, "M          none|single|dual|full [full]; bench also all [bench: all]"},
-    {"--material", T_STR, OFF(material), 0, 0, S, "NAME       measured material [marble]"},
+    {"--material", T_STR, OFF(material), 0, 0, S, "NAME       measured material (jade info --materials) [the file's glTF extras.jade_material, else marble]"},
     {"--sigma-s", T_FLOAT3, OFF(scene.sigma_s), 0, 1000, S, "R,G,B      reduced scattering, mm^-1"},
     {"--sigma-a", T_FLOAT3, OFF(scene.sigma_a), 0, 1000, S, "R,G,B      absorption, mm^-1"},
     {"--eta", T_FLOAT, OFF(scene.eta), 1.0, 3.0, S, "X          refractive index"},
     {"--density", T_FLOAT, OFF(scene.density), 0.001, 1000, S, "X          scales both coefficients [1]"},
     {"--mm-per-unit", T_FLOAT, OFF(scene.mm_per_unit), 1e-6, 1e9, S, "X          scene scale [object 100 mm across]"},
     {"--gain", T_FLOAT, OFF(scene.gain), 0, 100, R | B, "K          gain of the translucent layer [1]"},
-    {"--cam-azimuth", T_FLOAT, OFF(scene.cam_azimuth), -3600, 3600, S, "DEG        camera around +Y [15]"},
-    {"--cam-elevation", T_FLOAT, OFF(scene.cam_elevation), -89, 89, S, "DEG        camera elevation [35]"},
-    {"--cam-distance", T_FLOAT, OFF(scene.cam_distance), 1.3, 100, S, "X          in bounding radii [2.7]"},
+    {"--yaw", T_FLOAT, OFF(scene.cam_azimuth), -3600, 3600, S, "DEG        camera around +Y [15]"},
+    {"--pitch", T_FLOAT, OFF(scene.cam_elevation), -89, 89, S, "DEG        camera elevation [35]"},
+    {"--fit", T_FLOAT, OFF(scene.fit), 0.05, 1, S, "X          the camera frames the object's box within X of the picture [0.9]"},
+    {"--distance", T_FLOAT, OFF(scene.cam_distance), 1.3, 100, S, "X          camera distance in half box diagonals, instead of --fit [fit]"},
+    {"--cam-azimuth", T_FLOAT, OFF(scene.cam_azimuth), -3600, 3600, S, "DEG        the same as --yaw"},
+    {"--cam-elevation", T_FLOAT, OFF(scene.cam_elevation), -89, 89, S, "DEG        the same as --pitch"},
+    {"--cam-distance", T_FLOAT, OFF(scene.cam_distance), 1.3, 100, S, "X          the same as --distance"},
     {"--fov", T_FLOAT, OFF(scene.fov_deg), 5, 150, S, "DEG        vertical field of view [35]"},
     {"--light-azimuth", T_FLOAT, OFF(scene.light_azimuth), -3600, 3600, S, "DEG        light around +Y [170: behind]"},
     {"--light-elevation", T_FLOAT, OFF(scene.light_elevation), -89, 89, S, "DEG        light elevation [35]"},
@@ -76,6 +85,7 @@ static const opt table[] = {
     {"--diffusion-size", T_INT, OFF(rdesc.diffusion_size), 16, 2048, R | B, "N          full mode: first light-space diffusion level, texels per side [light map / 4]"},
     {"--compile", T_FLAG, OFF(compile_only), 0, 0, JD_OPT_INFO,
      "           build every shader program of every mode (as the renderer would for this device or --profile), draw nothing; a table, exit 1 if one fails"},
+    {"--materials", T_FLAG, OFF(list_materials), 0, 0, JD_OPT_INFO, "           list the measured materials, their coefficients and where they come from"},
     {"--profile", T_STR, OFF(profile), 0, 0, R | B | JD_OPT_INFO, "NAME       emulate a device's limits: generic, vc4, mali400"},
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
     {"--antialias", T_ANTIALIAS, OFF(rdesc.antialias), 0, 0, R | B,
@@ -87,9 +97,9 @@ static const opt table[] = {
     {"--log-every", T_FLOAT, OFF(log_every), 0, 86400, K | B,
      "S          a health line every S seconds: frames, frame times, missed vblanks, memory, fds, GL names [0: off]"},
     {"--cycle-materials", T_FLAG, OFF(cycle_materials), 0, 0, B, "           bench: a different material every 10 frames (soak tests)"},
-    {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, S, "N          memory budget, fixed [8 + the output pictures, doubled until the mesh fits]"},
-    {"--decode-timeout-ms", T_INT, OFF(load.timeout_ms), 1, 600000, S, "N          refuse a mesh whose decode takes longer [1500]"},
-    {"--max-faces", T_INT, OFF(load.max_faces), 1, 100000000, S, "N          refuse meshes with more faces [4000000]"},
+    {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, S | JD_OPT_CONVERT, "N          memory budget, fixed [8 + the output pictures, doubled until the mesh fits]"},
+    {"--decode-timeout-ms", T_INT, OFF(load.timeout_ms), 1, 600000, S | JD_OPT_CONVERT, "N          refuse a mesh whose decode takes longer [1500]"},
+    {"--max-faces", T_INT, OFF(load.max_faces), 1, 100000000, S | JD_OPT_CONVERT, "N          refuse meshes with more faces [4000000]"},
 };
 #undef R
 #undef S
@@ -107,11 +117,13 @@ void jd_options_defaults(jd_options *o)
     jd_scene_defaults(&o->scene, jd_material_find("marble"));
     o->scene.eta = 0; /* 0 until --eta or the material sets it */
     o->light_speed = 30.0f;
+    o->idle_s = 30.0f;
 }
 
 void jd_options_help(int command, const char *cmdname, const char *summary)
 {
-    printf("usage: jade %s %s[options]\n%s\n\noptions:\n", cmdname, (command & JD_OPT_METRIC) ? "A B " : "", summary);
+    printf("usage: jade %s %s[options]\n%s\n\noptions:\n", cmdname,
+           (command & JD_OPT_METRIC) ? "A B " : (command & JD_OPT_CONVERT) ? "IN OUT.drc " : "", summary);
     for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
         if (table[i].commands & command) printf("  %-20s %s\n", table[i].name, table[i].help);
     printf("  %-20s %s\n", "--help", "           this text");
@@ -189,11 +201,13 @@ static void unknown_option(int command, const char *cmd, const char *a, size_t l
         int d = distance(name, table[k].name);
         if (d < bd) { bd = d; best = table[k].name; }
     }
+    /* The command's name alone ("kiosk: FILE line N" names a config line). */
+    int cl = (int)strcspn(cmd, ": ");
     if (best)
-        fprintf(stderr, "jade %s: unknown option '%.*s'; did you mean %s? (see jade %s --help)\n", cmd, (int)len, a,
-                best, cmd);
+        fprintf(stderr, "jade %s: unknown option '%.*s'; did you mean %s? (see jade %.*s --help)\n", cmd, (int)len, a,
+                best, cl, cmd);
     else
-        fprintf(stderr, "jade %s: unknown option '%.*s' (see jade %s --help)\n", cmd, (int)len, a, cmd);
+        fprintf(stderr, "jade %s: unknown option '%.*s' (see jade %.*s --help)\n", cmd, (int)len, a, cl, cmd);
 }
 
 /* A path the system could not open as given is refused here, by name,
@@ -218,17 +232,18 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
     for (int i = first; i < argc; i++) {
         const char *a = argv[i];
         if (!options_done && (!strcmp(a, "--help") || !strcmp(a, "-h"))) return -1;
-        if ((options_done || a[0] != '-' || !a[1]) && (command & JD_OPT_METRIC)) {
-            /* metric's two pictures */
+        if ((options_done || a[0] != '-' || !a[1]) && (command & (JD_OPT_METRIC | JD_OPT_CONVERT))) {
+            /* metric's two pictures, convert's input and output */
+            const char *what = (command & JD_OPT_METRIC) ? "picture" : "file";
             if (o->num_positional >= 2) {
-                fprintf(stderr, "jade %s: one picture too many: '%s'\n", cmd, a);
+                fprintf(stderr, "jade %s: one %s too many: '%s'\n", cmd, what, a);
                 return 0;
             }
-            if (!path_ok(cmd, "picture", a)) return 0;
+            if (!path_ok(cmd, what, a)) return 0;
             o->positional[o->num_positional++] = a;
             continue;
         }
-        if (!strcmp(a, "--") && (command & JD_OPT_METRIC)) { options_done = 1; continue; }
+        if (!strcmp(a, "--") && (command & (JD_OPT_METRIC | JD_OPT_CONVERT))) { options_done = 1; continue; }
         /* --name value, or --name=value */
         const char *eq = strncmp(a, "--", 2) ? NULL : strchr(a, '=');
         size_t len = eq ? (size_t)(eq - a) : strlen(a);
@@ -258,6 +273,7 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
         case T_STR:
             if (!*v) { fprintf(stderr, "jade %s: %s: empty value\n", cmd, a); return 0; }
             *(const char **)field = v;
+            if (op->offset == OFF(material)) o->has_material = 1;
             break;
         case T_PATH:
             if (!path_ok(cmd, a, v)) return 0;
@@ -350,6 +366,89 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
     return 1;
 }
 
+static char *trim(char *s)
+{
+    while (*s == ' ' || *s == '\t') s++;
+    char *e = s + strlen(s);
+    while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r')) *--e = 0;
+    return s;
+}
+
+int jd_options_parse_file(jd_options *o, int command, const char *cmd, const char *path, char *store, size_t cap)
+{
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    struct stat st;
+    if (fd < 0) {
+        fprintf(stderr, "jade %s: %s: cannot open: %s\n", cmd, path, strerror(errno));
+        return 0;
+    }
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || (size_t)st.st_size >= cap) {
+        fprintf(stderr, "jade %s: %s: %s\n", cmd, path,
+                !S_ISREG(st.st_mode) ? "not a regular file" : "larger than a configuration file may be");
+        close(fd);
+        return 0;
+    }
+    size_t n = 0;
+    while (n < (size_t)st.st_size) {
+        ssize_t k = read(fd, store + n, (size_t)st.st_size - n);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) break;
+        n += (size_t)k;
+    }
+    close(fd);
+    store[n] = 0;
+    if (memchr(store, 0, n)) {
+        fprintf(stderr, "jade %s: %s: holds a NUL byte; not a text file\n", cmd, path);
+        return 0;
+    }
+    int line = 0;
+    for (char *p = store; p && *p;) {
+        char *next = strchr(p, '\n');
+        if (next) *next++ = 0;
+        line++;
+        char *hash = strchr(p, '#');
+        if (hash) *hash = 0;
+        char *l = trim(p);
+        p = next;
+        if (!*l) continue;
+        char *eq = strchr(l, '=');
+        char where[PATH_MAX + 64];
+        snprintf(where, sizeof where, "%s: %s line %d", cmd, path, line);
+        if (!eq) {
+            fprintf(stderr, "jade %s: expected 'key = value', got '%s'\n", where, l);
+            return 0;
+        }
+        *eq = 0;
+        char *key = trim(l), *value = trim(eq + 1);
+        char name[72];
+        if (!*key || strlen(key) > 60 || !strncmp(key, "--", 2)) {
+            fprintf(stderr, "jade %s: '%s' is not an option name (write them without --)\n", where, key);
+            return 0;
+        }
+        snprintf(name, sizeof name, "--%s", key);
+        const opt *op = find_option(command, name, strlen(name));
+        if (op && op->type == T_FLAG) {
+            if (!strcmp(value, "no") || !strcmp(value, "false") || !strcmp(value, "off") || !strcmp(value, "0")) {
+                *(int *)((char *)o + op->offset) = 0;
+                continue;
+            }
+            if (strcmp(value, "yes") && strcmp(value, "true") && strcmp(value, "on") && strcmp(value, "1")) {
+                fprintf(stderr, "jade %s: %s takes yes or no, got '%s'\n", where, key, value);
+                return 0;
+            }
+        }
+        if (op && op->offset == OFF(config)) {
+            fprintf(stderr, "jade %s: a configuration file cannot name another\n", where);
+            return 0;
+        }
+        /* Values stay in `store`, which the options point into. */
+        char *argv[4] = {NULL, NULL, name, value};
+        int argc = op && op->type == T_FLAG ? 3 : 4;
+        if (jd_options_parse(o, command, where, argc, argv, 2) != 1) return 0;
+    }
+    return 1;
+}
+
 int jd_options_finish(jd_options *o, const char *cmd)
 {
     const jd_material *m = jd_material_find(o->material);
@@ -373,6 +472,21 @@ int jd_options_finish(jd_options *o, const char *cmd)
         return 0;
     }
     return 1;
+}
+
+void jd_options_file_material(jd_options *o, const char *name, const char *cmd)
+{
+    if (o->has_material || !name || !name[0]) return;
+    const jd_material *m = jd_material_find(name);
+    if (!m) {
+        fprintf(stderr, "jade %s: the mesh names material '%s', which jade does not have; using %s\n", cmd, name,
+                o->material);
+        return;
+    }
+    o->material = m->name;
+    if (!o->has_sigma_s) memcpy(o->scene.sigma_s, m->sigma_s, sizeof m->sigma_s);
+    if (!o->has_sigma_a) memcpy(o->scene.sigma_a, m->sigma_a, sizeof m->sigma_a);
+    if (!o->has_eta) o->scene.eta = m->eta;
 }
 
 int jd_options_command(jd_options *o, int command, const char *cmd, const char *summary, int argc, char **argv)

@@ -34,14 +34,18 @@ typedef struct jd_options {
     float log_every;     /* kiosk, bench: seconds between health lines, 0 = none */
     int cycle_materials; /* bench */
     int compile_only;    /* info --compile */
+    int list_materials;  /* info --materials */
     float light_speed;   /* kiosk: degrees per second */
+    const char *config;  /* kiosk: the configuration file */
+    float idle_s;        /* kiosk: seconds without input before the camera returns */
     jd_load_desc load;
     jd_renderer_desc rdesc;
     jd_scene scene;
-    int has_sigma_s, has_sigma_a, has_eta, has_budget;
+    int has_sigma_s, has_sigma_a, has_eta, has_budget, has_material;
 } jd_options;
 
-enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD_OPT_KIOSK = 16, JD_OPT_REFERENCE = 32, JD_OPT_METRIC = 64 };
+enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD_OPT_KIOSK = 16, JD_OPT_REFERENCE = 32, JD_OPT_METRIC = 64,
+       JD_OPT_CONVERT = 128 };
 
 void jd_options_defaults(jd_options *o);
 /* Parses argv[first..argc); prints a one-line error and returns 0 on bad input.
@@ -50,6 +54,16 @@ int jd_options_parse(jd_options *o, int command, const char *cmdname, int argc, 
 void jd_options_help(int command, const char *cmdname, const char *summary);
 /* Applies --material and explicit coefficients to the scene. */
 int jd_options_finish(jd_options *o, const char *cmdname);
+/* Options from a file of "key = value" lines (keys are the options without
+ * "--"; flags take yes/no, true/false, on/off or 1/0; '#' starts a comment),
+ * checked exactly as on the command line; errors name the file and line.
+ * String values live in `store` (cap bytes), which must outlive `o`.
+ * Returns 1, or 0 after printing one line. */
+int jd_options_parse_file(jd_options *o, int command, const char *cmdname, const char *path, char *store, size_t cap);
+/* The material a mesh file names (glTF extras.jade_material), where the
+ * command line named none: applied as --material would be. Says so on
+ * stderr; an unknown name is said and ignored. */
+void jd_options_file_material(jd_options *o, const char *name, const char *cmdname);
 /* Parse, help and finish in one: returns -1 to go on, else the exit code. */
 int jd_options_command(jd_options *o, int command, const char *cmdname, const char *summary, int argc,
                        char **argv);

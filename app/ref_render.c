@@ -230,7 +230,7 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     if (!r->pos || !r->nrm || !r->tri) { jd_ref_destroy(r); return jd_fail(err, JD_ERR_BUDGET, "out of memory for the mesh"); }
 
     /* jade's world, camera, light and Fresnel: the renderer's own. */
-    jd_scene_view_of(s, m, &r->view);
+    jd_scene_view_of(s, m, (float)desc->width / (float)desc->height, &r->view);
     jd_vec3 c = r->view.centre;
     float radius = r->view.radius;
     for (uint32_t i = 0; i < m->num_vertices; i++) {

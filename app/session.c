@@ -58,7 +58,10 @@ static int load_mesh(jd_session *s, jd_options *o, const char *cmd)
         ld.path = s->mesh_path;
         ld.allow_32bit_indices = 1; /* the renderer checks the device later */
         jd_result r = jd_mesh_load_draco(&ld, &s->arena, &s->mesh, &s->load, &err);
-        if (r == JD_OK) return 1;
+        if (r == JD_OK) {
+            jd_options_file_material(o, s->load.material, cmd);
+            return 1;
+        }
         free(s->memory);
         s->memory = NULL;
         if (r != JD_ERR_BUDGET || o->has_budget || budget >= ((size_t)1 << 31) / 2) {
@@ -107,6 +110,8 @@ static void log_driver(void *user, const char *kind, const char *msg)
     if (strcmp(kind, "info") && strcmp(kind, "performance"))
         fprintf(stderr, "jade %s: GL driver %s: %s\n", (const char *)user, kind, msg);
 }
+
+static int make_renderer(jd_session *s, jd_options *o, const char *cmd);
 
 /* Probes (open = 0) or opens (1) the platform; with --wait-display, tries
  * again every second, saying so once, until it works or a signal asks to
@@ -163,6 +168,43 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
         return 0;
     }
     if (o->profile) jd_profile_apply(jd_profile_find(o->profile), &s->caps);
+    return make_renderer(s, o, cmd);
+}
+
+/* Another mesh for a running session (a kiosk told to re-read its
+ * configuration): the renderer and the old mesh leave the arena, the new
+ * mesh and a new renderer take it. Nothing is presented meanwhile, so the
+ * display keeps the last frame. Should the new mesh not load or not fit,
+ * the old one comes back. */
+int jd_session_reload_mesh(jd_session *s, jd_options *o, const char *cmd)
+{
+    char old[sizeof s->mesh_path];
+    memcpy(old, s->mesh_path, sizeof old);
+    if (o->mesh) snprintf(s->mesh_path, sizeof s->mesh_path, "%s", o->mesh);
+    else if (!jd_default_asset(s->mesh_path, sizeof s->mesh_path)) memcpy(s->mesh_path, old, sizeof old);
+    jd_renderer_destroy(s->renderer);
+    s->renderer = NULL;
+    for (int attempt = 0; attempt < 2; attempt++) {
+        jd_error err = {0};
+        jd_arena_init(&s->arena, s->memory, s->arena.size);
+        jd_load_desc ld = o->load;
+        ld.path = s->mesh_path;
+        ld.allow_32bit_indices = 1;
+        if (jd_mesh_load_draco(&ld, &s->arena, &s->mesh, &s->load, &err) == JD_OK) {
+            jd_options_file_material(o, s->load.material, cmd);
+            if (make_renderer(s, o, cmd)) return attempt == 0;
+        } else {
+            fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+        }
+        if (attempt == 0) fprintf(stderr, "jade %s: going on with %s\n", cmd, old);
+        memcpy(s->mesh_path, old, sizeof old);
+    }
+    return -1;
+}
+
+static int make_renderer(jd_session *s, jd_options *o, const char *cmd)
+{
+    jd_error err = {0};
     jd_renderer_desc rd = o->rdesc;
     rd.mesh = &s->mesh;
     rd.caps = &s->caps;

@@ -26,6 +26,10 @@ double jd_now_ms(void);
 int jd_session_open(jd_session *s, jd_options *o, const char *cmd);
 /* Only the mesh, for commands without a display (the reference). */
 int jd_session_open_mesh(jd_session *s, jd_options *o, const char *cmd);
+/* Loads o->mesh (or the default asset) in place of the session's mesh and
+ * makes a new renderer: 1 done, 0 the new mesh failed (said) and the old
+ * one is back, -1 neither works (said). */
+int jd_session_reload_mesh(jd_session *s, jd_options *o, const char *cmd);
 void jd_session_close(jd_session *s);
 /* One line: how the edges are anti-aliased. */
 const char *jd_antialias_describe(const jd_renderer *r);

@@ -12,11 +12,8 @@
 #include <utility>
 #include <vector>
 
-#ifdef JD_HAVE_MESHOPT
-#include <meshoptimizer.h>
-#endif
-
 #include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
 #include <draco/io/obj_decoder.h>
 #include <draco/io/ply_decoder.h>
 #include <draco/io/stl_decoder.h>
@@ -42,86 +39,23 @@ void set_err(char *err, size_t errlen, const char *msg)
         std::snprintf(err, errlen, "%s", msg);
 }
 
-// Buffers rows so the pipe sees few large writes.
-struct Out {
-    Out(jd_draco_write_fn w, void *u) : write(w), user(u) {}
-    jd_draco_write_fn write;
-    void *user;
-    unsigned char buf[1 << 16];
-    size_t n = 0;
-    bool ok = true;
-    void put(const void *p, size_t len)
-    {
-        const unsigned char *s = static_cast<const unsigned char *>(p);
-        while (ok && len) {
-            size_t k = sizeof buf - n < len ? sizeof buf - n : len;
-            std::memcpy(buf + n, s, k);
-            n += k; s += k; len -= k;
-            if (n == sizeof buf) flush();
-        }
-    }
-    void flush()
-    {
-        if (ok && n && write(user, buf, n) != 0) ok = false;
-        n = 0;
-    }
-};
-
-// Streams one attribute as `comps` floats per point; missing components are 0.
-bool put_attribute(Out &out, const draco::PointAttribute *att, uint32_t nv, int comps)
+// One attribute as `comps` floats per point (missing components are 0)
+// into a new heap array; NULL when a hostile file maps a point past the
+// attribute's values.
+float *copy_attribute(const draco::PointAttribute *att, uint32_t nv, int comps)
 {
-    float v[4];
+    float *out = static_cast<float *>(std::malloc(sizeof(float) * size_t(comps) * (nv ? nv : 1)));
+    if (!out) throw std::bad_alloc();
     for (uint32_t i = 0; i < nv; ++i) {
         draco::AttributeValueIndex avi = att->mapped_index(draco::PointIndex(i));
-        // A hostile file can map a point past the attribute's values.
-        if (avi.value() >= att->size()) return false;
-        std::memset(v, 0, sizeof v);
-        if (!att->ConvertValue<float>(avi, static_cast<int8_t>(comps), v)) return false;
-        out.put(v, sizeof(float) * comps);
+        float v[4] = {0, 0, 0, 0};
+        if (avi.value() >= att->size() || !att->ConvertValue<float>(avi, static_cast<int8_t>(comps), v)) {
+            std::free(out);
+            return nullptr;
+        }
+        std::memcpy(out + size_t(comps) * i, v, sizeof(float) * comps);
     }
-    return true;
-}
-
-// The triangles in the order a GPU draws best: meshoptimizer's vertex cache
-// order (fewer vertex shader runs), then its overdraw order (fewer pixels
-// shaded twice, for up to 5% more vertex work). Done here, in the decoder's
-// child process, where the heap is allowed: the parent keeps its one
-// allocation. Indices past the vertex count (a hostile file) leave the
-// order alone; the parent refuses them anyway.
-void order_for_gpu(std::vector<uint32_t> &idx, const draco::PointAttribute *pos, uint32_t nv)
-{
-#ifdef JD_HAVE_MESHOPT
-    for (uint32_t i : idx)
-        if (i >= nv) return;
-    std::vector<float> p(3 * size_t(nv));
-    for (uint32_t i = 0; i < nv; ++i) {
-        draco::AttributeValueIndex avi = pos->mapped_index(draco::PointIndex(i));
-        if (avi.value() >= pos->size()) return;
-        float v[3] = {0, 0, 0};
-        if (!pos->ConvertValue<float>(avi, 3, v)) return;
-        for (int k = 0; k < 3; ++k) p[3 * size_t(i) + k] = std::isfinite(v[k]) ? v[k] : 0.0f;
-    }
-    // The overdraw order sorts by which way triangles face: a mesh wound
-    // inside out (the parent turns it round later) is ordered turned round.
-    double vol6 = 0;
-    for (size_t t = 0; t + 2 < idx.size(); t += 3) {
-        const float *a = &p[3 * size_t(idx[t])], *b = &p[3 * size_t(idx[t + 1])], *c = &p[3 * size_t(idx[t + 2])];
-        vol6 += a[0] * (double(b[1]) * c[2] - double(b[2]) * c[1]) - a[1] * (double(b[0]) * c[2] - double(b[2]) * c[0]) +
-                a[2] * (double(b[0]) * c[1] - double(b[1]) * c[0]);
-    }
-    auto turn = [&idx]() {
-        for (size_t t = 0; t + 2 < idx.size(); t += 3) std::swap(idx[t + 1], idx[t + 2]);
-    };
-    if (vol6 < 0) turn();
-    std::vector<uint32_t> tmp(idx.size());
-    meshopt_optimizeVertexCache(tmp.data(), idx.data(), idx.size(), nv);
-    meshopt_optimizeOverdraw(idx.data(), tmp.data(), idx.size(), p.data(), nv, 3 * sizeof(float), 1.05f);
-    if (vol6 < 0) turn(); // the file's winding: the parent decides what to do with it
-#else
-    (void)idx;
-    (void)pos;
-    (void)nv;
-#endif
+    return out;
 }
 
 // libdraco 1.5.5 reads binary STL only: ASCII STL ("solid", then "facet
@@ -224,15 +158,13 @@ std::unique_ptr<draco::Mesh> read_mesh(draco::DecoderBuffer *buffer, int format,
     return mesh;
 }
 
-int decode(const void *data, size_t size, int format, uint32_t max_vertices, uint32_t max_faces, int keep_order,
-           jd_draco_write_fn write, void *user, char *err, size_t errlen)
+// A decoded mesh's positions, normals, texture coordinates and faces as
+// plain arrays; the attributes by their glTF unique ids where ids is given.
+int to_arrays(const draco::Mesh &mesh, const int *ids, uint32_t max_vertices, uint32_t max_faces, jd_mesh_arrays *out,
+              char *err, size_t errlen)
 {
-    draco::DecoderBuffer buffer;
-    buffer.Init(static_cast<const char *>(data), size);
-    std::unique_ptr<draco::Mesh> mesh = read_mesh(&buffer, format, err, errlen);
-    if (!mesh) return -1;
-    const uint32_t nv = mesh->num_points();
-    const uint32_t nf = mesh->num_faces();
+    const uint32_t nv = mesh.num_points();
+    const uint32_t nf = mesh.num_faces();
     if (nv == 0 || nf == 0) {
         set_err(err, errlen, "the mesh is empty (no vertices or no faces)");
         return -1;
@@ -244,59 +176,101 @@ int decode(const void *data, size_t size, int format, uint32_t max_vertices, uin
         set_err(err, errlen, msg);
         return -1;
     }
-    const draco::PointAttribute *pos = mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+    auto named = [&](draco::GeometryAttribute::Type t, int k) -> const draco::PointAttribute * {
+        if (!ids) return mesh.GetNamedAttribute(t);
+        return ids[k] >= 0 ? mesh.GetAttributeByUniqueId(uint32_t(ids[k])) : nullptr;
+    };
+    const draco::PointAttribute *pos = named(draco::GeometryAttribute::POSITION, 0);
     if (!pos || pos->num_components() < 2) {
         set_err(err, errlen, "the mesh has no usable position attribute");
         return -1;
     }
-    const draco::PointAttribute *nrm = mesh->GetNamedAttribute(draco::GeometryAttribute::NORMAL);
+    const draco::PointAttribute *nrm = named(draco::GeometryAttribute::NORMAL, 1);
     if (nrm && nrm->num_components() != 3) nrm = nullptr;
-    const draco::PointAttribute *uv = mesh->GetNamedAttribute(draco::GeometryAttribute::TEX_COORD);
+    const draco::PointAttribute *uv = named(draco::GeometryAttribute::TEX_COORD, 2);
     if (uv && uv->num_components() < 2) uv = nullptr;
-
-    std::unique_ptr<Out> out(new Out(write, user));
-    jd_draco_record_header h = {JD_DRACO_RECORD_MAGIC, nv, nf,
-                                (nrm ? uint32_t(JD_DRACO_HAS_NORMALS) : 0u) |
-                                    (uv ? uint32_t(JD_DRACO_HAS_UVS) : 0u)};
-    out->put(&h, sizeof h);
-    if (!put_attribute(*out, pos, nv, 3) || (nrm && !put_attribute(*out, nrm, nv, 3)) ||
-        (uv && !put_attribute(*out, uv, nv, 2))) {
+    std::memset(out, 0, sizeof *out);
+    out->nv = nv;
+    out->nf = nf;
+    out->pos = copy_attribute(pos, nv, 3);
+    out->nrm = nrm ? copy_attribute(nrm, nv, 3) : nullptr;
+    out->uv = uv ? copy_attribute(uv, nv, 2) : nullptr;
+    if (!out->pos || (nrm && !out->nrm) || (uv && !out->uv)) {
+        jd_mesh_arrays_free(out);
         set_err(err, errlen, "an attribute maps a vertex to a value that does not exist");
         return -1;
     }
-    std::vector<uint32_t> idx(3 * size_t(nf));
+    out->idx = static_cast<uint32_t *>(std::malloc(sizeof(uint32_t) * 3 * size_t(nf)));
+    if (!out->idx) {
+        jd_mesh_arrays_free(out);
+        throw std::bad_alloc();
+    }
     for (uint32_t f = 0; f < nf; ++f) {
-        const draco::Mesh::Face &face = mesh->face(draco::FaceIndex(f));
-        for (int k = 0; k < 3; ++k) idx[3 * size_t(f) + k] = face[k].value();
+        const draco::Mesh::Face &face = mesh.face(draco::FaceIndex(f));
+        for (int k = 0; k < 3; ++k) out->idx[3 * size_t(f) + k] = face[k].value();
     }
-    if (!keep_order) {
-        // Ordering is a nicety: a mesh near the child's memory limit keeps
-        // its file order rather than failing to load.
-        std::vector<uint32_t> file_order;
-        try {
-            file_order = idx;
-            order_for_gpu(idx, pos, nv);
-        } catch (const std::bad_alloc &) {
-            if (file_order.size() == idx.size()) idx.swap(file_order);
-        }
+    return 0;
+}
+
+int read_arrays(const void *data, size_t size, int format, const int *ids, uint32_t max_vertices, uint32_t max_faces,
+                jd_mesh_arrays *out, char *err, size_t errlen)
+{
+    draco::DecoderBuffer buffer;
+    buffer.Init(static_cast<const char *>(data), size);
+    std::unique_ptr<draco::Mesh> mesh = read_mesh(&buffer, format, err, errlen);
+    if (!mesh) return -1;
+    return to_arrays(*mesh, ids, max_vertices, max_faces, out, err, errlen);
+}
+
+// A Draco file of the mesh: positions quantised to 14 bits, normals to 10,
+// texture coordinates to 12 (close to draco_encoder's defaults), the
+// connectivity by edgebreaker at speed 5.
+int encode(const jd_mesh_arrays *m, jd_draco_write_fn write, void *user, char *err, size_t errlen)
+{
+    draco::Mesh mesh;
+    mesh.set_num_points(m->nv);
+    mesh.SetNumFaces(m->nf);
+    auto add = [&](draco::GeometryAttribute::Type t, const float *v, int comps) {
+        draco::GeometryAttribute ga;
+        ga.Init(t, nullptr, int8_t(comps), draco::DT_FLOAT32, false, sizeof(float) * comps, 0);
+        int id = mesh.AddAttribute(ga, true, m->nv);
+        draco::PointAttribute *att = mesh.attribute(id);
+        for (uint32_t i = 0; i < m->nv; ++i)
+            att->SetAttributeValue(draco::AttributeValueIndex(i), v + size_t(comps) * i);
+    };
+    add(draco::GeometryAttribute::POSITION, m->pos, 3);
+    if (m->nrm) add(draco::GeometryAttribute::NORMAL, m->nrm, 3);
+    if (m->uv) add(draco::GeometryAttribute::TEX_COORD, m->uv, 2);
+    for (uint32_t f = 0; f < m->nf; ++f) {
+        draco::Mesh::Face face;
+        for (int k = 0; k < 3; ++k) face[k] = draco::PointIndex(m->idx[3 * size_t(f) + k]);
+        mesh.SetFace(draco::FaceIndex(f), face);
     }
-    out->put(idx.data(), sizeof(uint32_t) * idx.size());
-    out->flush();
-    if (!out->ok) {
-        set_err(err, errlen, "could not hand the decoded mesh back (pipe closed)");
+    draco::Encoder enc;
+    enc.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 14);
+    enc.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, 10);
+    enc.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, 12);
+    enc.SetSpeedOptions(5, 5);
+    draco::EncoderBuffer buf;
+    draco::Status st = enc.EncodeMeshToBuffer(mesh, &buf);
+    if (!st.ok()) {
+        char msg[256];
+        std::snprintf(msg, sizeof msg, "draco could not encode the mesh: %s", st.error_msg());
+        set_err(err, errlen, msg);
+        return -1;
+    }
+    if (write(user, buf.data(), buf.size()) != 0) {
+        set_err(err, errlen, "could not write the encoded mesh");
         return -1;
     }
     return 0;
 }
 
-} // namespace
-
-extern "C" int jd_draco_decode(const void *data, size_t size, int format, uint32_t max_vertices,
-                               uint32_t max_faces, int keep_order, jd_draco_write_fn write, void *user,
-                               char *err, size_t errlen)
+// Every C++ exception stops at this boundary.
+template <class F> int guarded(char *err, size_t errlen, F f)
 {
     try {
-        return decode(data, size, format, max_vertices, max_faces, keep_order, write, user, err, errlen);
+        return f();
     } catch (const std::bad_alloc &) {
         set_err(err, errlen, "draco ran out of memory while decoding");
     } catch (const std::exception &e) {
@@ -307,4 +281,25 @@ extern "C" int jd_draco_decode(const void *data, size_t size, int format, uint32
         set_err(err, errlen, "draco threw an unknown exception");
     }
     return -1;
+}
+
+} // namespace
+
+extern "C" int jd_draco_read(const void *data, size_t size, int format, uint32_t max_vertices, uint32_t max_faces,
+                             jd_mesh_arrays *out, char *err, size_t errlen)
+{
+    return guarded(err, errlen, [&] { return read_arrays(data, size, format, nullptr, max_vertices, max_faces, out, err, errlen); });
+}
+
+extern "C" int jd_draco_read_ids(const void *data, size_t size, const int ids[3], uint32_t max_vertices,
+                                 uint32_t max_faces, jd_mesh_arrays *out, char *err, size_t errlen)
+{
+    return guarded(err, errlen, [&] {
+        return read_arrays(data, size, JD_FORMAT_DRACO, ids, max_vertices, max_faces, out, err, errlen);
+    });
+}
+
+extern "C" int jd_draco_encode(const jd_mesh_arrays *m, jd_draco_write_fn write, void *user, char *err, size_t errlen)
+{
+    return guarded(err, errlen, [&] { return encode(m, write, user, err, errlen); });
 }

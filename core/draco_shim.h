@@ -7,14 +7,17 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mesh_arrays.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 #define JD_DRACO_RECORD_MAGIC 0x314d444au /* "JDM1" */
-enum { JD_DRACO_HAS_NORMALS = 1, JD_DRACO_HAS_UVS = 2 };
+enum { JD_DRACO_HAS_NORMALS = 1, JD_DRACO_HAS_UVS = 2, JD_DRACO_HAS_MATERIAL = 4 };
 
-/* Followed by float pos[3*nv], [float nrm[3*nv]], [float uv[2*nv]], uint32 idx[3*nf]. */
+/* Followed by float pos[3*nv], [float nrm[3*nv]], [float uv[2*nv]],
+ * uint32 idx[3*nf], [char material[32], NUL-terminated]. */
 typedef struct jd_draco_record_header {
     uint32_t magic, num_vertices, num_faces, flags;
 } jd_draco_record_header;
@@ -22,12 +25,16 @@ typedef struct jd_draco_record_header {
 typedef int (*jd_draco_write_fn)(void *user, const void *data, size_t n);
 
 /* Decodes a mesh (format: a jd_mesh_format; libdraco reads Draco, OBJ, PLY
- * and STL) and streams it out, its triangles in the order a GPU
- * draws best unless keep_order (where built with meshoptimizer). Returns 0,
- * or -1 with a reason in err. Never throws: every C++ exception stops at
- * this boundary. */
-int jd_draco_decode(const void *data, size_t size, int format, uint32_t max_vertices, uint32_t max_faces,
-                    int keep_order, jd_draco_write_fn write, void *user, char *err, size_t errlen);
+ * and STL) into heap arrays. Returns 0, or -1 with a reason in err. Never
+ * throws: every C++ exception stops at this boundary. */
+int jd_draco_read(const void *data, size_t size, int format, uint32_t max_vertices, uint32_t max_faces,
+                  jd_mesh_arrays *out, char *err, size_t errlen);
+/* A glTF KHR_draco_mesh_compression primitive: its position, normal and
+ * texture coordinate attributes by their Draco unique ids (-1: absent). */
+int jd_draco_read_ids(const void *data, size_t size, const int ids[3], uint32_t max_vertices, uint32_t max_faces,
+                      jd_mesh_arrays *out, char *err, size_t errlen);
+/* Writes the mesh as a Draco file (edgebreaker; positions at 14 bits). */
+int jd_draco_encode(const jd_mesh_arrays *m, jd_draco_write_fn write, void *user, char *err, size_t errlen);
 
 #ifdef __cplusplus
 }

@@ -3,19 +3,24 @@
 #include <math.h>
 #include <string.h>
 
-/* Jensen, Marschner, Levoy, Hanrahan 2001, Table; the same numbers as pbrt. */
+/* Jensen, Marschner, Levoy, Hanrahan 2001, "A Practical Model for Subsurface
+ * Light Transport", Table 2: sigma_s' and sigma_a measured in mm^-1 for red,
+ * green and blue (the same numbers as pbrt's). The paper uses eta 1.3 for
+ * every material; marble takes calcite's 1.5. */
+#define JD_JENSEN "Jensen et al. 2001, Table 2 (measured); eta 1.3 as in the paper"
+#define JD_JENSEN_CALCITE "Jensen et al. 2001, Table 2 (measured); eta 1.5 (calcite)"
 const jd_material jd_materials[] = {
-    {"apple", {2.29f, 2.39f, 1.97f}, {0.0030f, 0.0034f, 0.046f}, 1.3f},
-    {"chicken1", {0.15f, 0.21f, 0.38f}, {0.015f, 0.077f, 0.19f}, 1.3f},
-    {"chicken2", {0.19f, 0.25f, 0.32f}, {0.018f, 0.088f, 0.20f}, 1.3f},
-    {"cream", {7.38f, 5.47f, 3.15f}, {0.0002f, 0.0028f, 0.0163f}, 1.3f},
-    {"ketchup", {0.18f, 0.07f, 0.03f}, {0.061f, 0.97f, 1.45f}, 1.3f},
-    {"marble", {2.19f, 2.62f, 3.00f}, {0.0021f, 0.0041f, 0.0071f}, 1.5f},
-    {"potato", {0.68f, 0.70f, 0.55f}, {0.0024f, 0.0090f, 0.12f}, 1.3f},
-    {"skimmilk", {0.70f, 1.22f, 1.90f}, {0.0014f, 0.0025f, 0.0142f}, 1.3f},
-    {"skin1", {0.74f, 0.88f, 1.01f}, {0.032f, 0.17f, 0.48f}, 1.3f},
-    {"skin2", {1.09f, 1.59f, 1.79f}, {0.013f, 0.070f, 0.145f}, 1.3f},
-    {"wholemilk", {2.55f, 3.21f, 3.77f}, {0.0011f, 0.0024f, 0.014f}, 1.3f},
+    {"apple", {2.29f, 2.39f, 1.97f}, {0.0030f, 0.0034f, 0.046f}, 1.3f, JD_JENSEN},
+    {"chicken1", {0.15f, 0.21f, 0.38f}, {0.015f, 0.077f, 0.19f}, 1.3f, JD_JENSEN},
+    {"chicken2", {0.19f, 0.25f, 0.32f}, {0.018f, 0.088f, 0.20f}, 1.3f, JD_JENSEN},
+    {"cream", {7.38f, 5.47f, 3.15f}, {0.0002f, 0.0028f, 0.0163f}, 1.3f, JD_JENSEN},
+    {"ketchup", {0.18f, 0.07f, 0.03f}, {0.061f, 0.97f, 1.45f}, 1.3f, JD_JENSEN},
+    {"marble", {2.19f, 2.62f, 3.00f}, {0.0021f, 0.0041f, 0.0071f}, 1.5f, JD_JENSEN_CALCITE},
+    {"potato", {0.68f, 0.70f, 0.55f}, {0.0024f, 0.0090f, 0.12f}, 1.3f, JD_JENSEN},
+    {"skimmilk", {0.70f, 1.22f, 1.90f}, {0.0014f, 0.0025f, 0.0142f}, 1.3f, JD_JENSEN},
+    {"skin1", {0.74f, 0.88f, 1.01f}, {0.032f, 0.17f, 0.48f}, 1.3f, JD_JENSEN},
+    {"skin2", {1.09f, 1.59f, 1.79f}, {0.013f, 0.070f, 0.145f}, 1.3f, JD_JENSEN},
+    {"wholemilk", {2.55f, 3.21f, 3.77f}, {0.0011f, 0.0024f, 0.014f}, 1.3f, JD_JENSEN},
 };
 const int jd_material_count = (int)(sizeof jd_materials / sizeof jd_materials[0]);
 

@@ -12,6 +12,7 @@ typedef struct jd_material {
     float sigma_s[3]; /* reduced scattering sigma_s' */
     float sigma_a[3]; /* absorption */
     float eta;
+    const char *source;   /* where the numbers come from */
 } jd_material;
 
 extern const jd_material jd_materials[];

@@ -6,8 +6,8 @@
 
 const char *jd_mesh_format_name(jd_mesh_format f)
 {
-    static const char *names[] = {"unknown", "Draco", "OBJ", "PLY", "STL"};
-    return f >= 0 && f <= JD_FORMAT_STL ? names[f] : "unknown";
+    static const char *names[] = {"unknown", "Draco", "OBJ", "PLY", "STL", "glTF"};
+    return f >= 0 && f <= JD_FORMAT_GLTF ? names[f] : "unknown";
 }
 
 /* A line starting at p (within n), as a bounded C string in out. */
@@ -80,6 +80,10 @@ jd_result jd_mesh_peek(const uint8_t *buf, size_t n, const char *name, jd_mesh_f
         *vertices = info.num_vertices;
         return JD_OK;
     }
+    if (n >= 12 && !memcmp(buf, "glTF", 4)) {
+        *format = JD_FORMAT_GLTF;
+        return JD_OK;
+    }
     if (n >= 4 && !memcmp(buf, "ply", 3) && (buf[3] == '\n' || buf[3] == '\r')) {
         *format = JD_FORMAT_PLY;
         return peek_ply(buf, n, name, faces, vertices, err);
@@ -101,10 +105,15 @@ jd_result jd_mesh_peek(const uint8_t *buf, size_t n, const char *name, jd_mesh_f
         *format = JD_FORMAT_STL;
         return JD_OK;
     }
+    /* glTF text: a JSON object with an "asset" member near its start. */
+    if (s < n && buf[s] == '{' && memmem(buf, n < (64u << 10) ? n : (64u << 10), "\"asset\"", 7)) {
+        *format = JD_FORMAT_GLTF;
+        return JD_OK;
+    }
     if (looks_like_obj(buf, n)) {
         *format = JD_FORMAT_OBJ;
         return JD_OK;
     }
     return jd_fail(err, JD_ERR_FORMAT,
-                   "%s: not a mesh jade reads: no Draco, PLY or STL header and no OBJ vertex lines", name);
+                   "%s: not a mesh jade reads: no Draco, glTF, PLY or STL header and no OBJ vertex lines", name);
 }

@@ -13,7 +13,8 @@ typedef enum jd_mesh_format {
     JD_FORMAT_DRACO,
     JD_FORMAT_OBJ,
     JD_FORMAT_PLY,
-    JD_FORMAT_STL
+    JD_FORMAT_STL,
+    JD_FORMAT_GLTF /* .gltf text or .glb binary */
 } jd_mesh_format;
 
 const char *jd_mesh_format_name(jd_mesh_format f);

@@ -15,6 +15,7 @@
 #include "clock.h"
 #include "draco_header.h"
 #include "draco_shim.h"
+#include "gltf_read.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define JD_ASAN 1
@@ -70,9 +71,27 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
         setrlimit(RLIMIT_AS, &as);
     }
 #endif
-    char msg[256] = "";
-    int rc = jd_draco_decode(buf, n, (int)d->format, d->max_vertices, d->max_faces, d->keep_face_order, write_all,
-                             &data_fd, msg, sizeof msg);
+    char msg[512] = "";
+    jd_mesh_arrays m;
+    int rc;
+    if (d->format == JD_FORMAT_GLTF) {
+#ifdef JD_HAVE_CJSON
+        jd_gltf_limits lim = {d->max_vertices, d->max_faces, d->max_file_bytes};
+        rc = jd_gltf_read(buf, n, d->path, &lim, &m, msg, sizeof msg);
+#else
+        snprintf(msg, sizeof msg, "this jade was built without libcjson, so it cannot read glTF");
+        rc = -1;
+#endif
+    } else {
+        rc = jd_draco_read(buf, n, (int)d->format, d->max_vertices, d->max_faces, &m, msg, sizeof msg);
+    }
+    if (rc == 0) {
+        if (!d->keep_face_order) jd_mesh_arrays_order(&m);
+        if (jd_mesh_arrays_emit(&m, write_all, &data_fd) != 0) {
+            snprintf(msg, sizeof msg, "could not hand the decoded mesh back (pipe closed)");
+            rc = -1;
+        }
+    }
     if (rc != 0) write_all(&err_fd, msg, strlen(msg));
     _exit(rc == 0 ? 0 : 1);
 }
@@ -154,7 +173,7 @@ static jd_result reap(pid_t pid, int kill_it, int *status)
 
 static jd_result child_failure(const jd_load_desc *d, int status, int err_fd, jd_error *err)
 {
-    char msg[256] = "";
+    char msg[512] = "";
     ssize_t k = read(err_fd, msg, sizeof msg - 1);
     if (k > 0) msg[k] = 0;
     if (WIFSIGNALED(status)) {
@@ -256,6 +275,10 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
     if (r == JD_OK && (h.flags & JD_DRACO_HAS_UVS))
         r = read_exact(&rd, out->uvs, sizeof(float) * 2 * h.num_vertices, &eof, err);
     if (r == JD_OK) r = read_exact(&rd, idx32, sizeof(uint32_t) * 3 * (size_t)h.num_faces, &eof, err);
+    if (r == JD_OK && (h.flags & JD_DRACO_HAS_MATERIAL)) {
+        r = read_exact(&rd, st.material, sizeof st.material, &eof, err);
+        st.material[sizeof st.material - 1] = 0;
+    }
     st.decode_ms = jd_clock_ms() - t0;
 
     reap(pid, r != JD_OK && !eof, &status);

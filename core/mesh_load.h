@@ -1,4 +1,4 @@
-/* Loading a mesh (Draco, OBJ, PLY or STL, told apart by content) from a file
+/* Loading a mesh (Draco, glTF, OBJ, PLY or STL, told apart by content) from a file
  * that may be corrupt or hostile. */
 #ifndef JD_MESH_LOAD_H
 #define JD_MESH_LOAD_H
@@ -28,7 +28,8 @@ typedef struct jd_load_stats {
     double decode_ms;   /* fork to last byte received */
     size_t file_bytes;
     uint32_t declared_faces;
-    int format;         /* jd_mesh_format: Draco, OBJ, PLY or STL, by content */
+    int format;         /* jd_mesh_format: Draco, glTF, OBJ, PLY or STL, by content */
+    char material[32];  /* a jade material the file names (glTF extras.jade_material), or "" */
 } jd_load_stats;
 
 /* libdraco runs in a child process under an address-space and CPU limit and a

@@ -147,7 +147,8 @@ void jd_scene_defaults(jd_scene *s, const jd_material *m)
     s->mode = JD_MODE_FULL;
     s->cam_azimuth = 15;
     s->cam_elevation = 35;
-    s->cam_distance = 2.7f;
+    s->cam_distance = 0; /* fit the object to the picture */
+    s->fit = 0.9f;
     s->fov_deg = 35;
     s->light_azimuth = 170; /* behind the object: what translucency is about */
     s->light_elevation = 35;
@@ -167,14 +168,38 @@ void jd_scene_defaults(jd_scene *s, const jd_material *m)
     s->background[2] = 0.065f;
 }
 
-void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, jd_scene_view *v)
+/* The nearest camera distance, along `dir` (unit, from the origin to the
+ * camera), at which every corner of the box (world units, centred) projects
+ * within `fit` of the picture, on both sides: for a corner at right/up
+ * offsets x, y and depth z towards the camera, |x| <= fit * tx * (d - z) and
+ * the same for y. A figure standing in a portrait frame fills its height;
+ * nothing is cropped at any aspect or angle. */
+static float fit_distance(jd_vec3 half, jd_vec3 dir, float fit, float fov_deg, float aspect)
+{
+    if (!(fit > 0 && fit <= 1)) fit = 0.9f;
+    double ty = tan(fov_deg * M_PI / 360.0) * fit, tx = ty * aspect;
+    jd_vec3 up = fabsf(dir.y) > 0.999f ? jd_v3(1, 0, 0) : jd_v3(0, 1, 0);
+    jd_vec3 right = jd_v3_norm(jd_v3_cross(up, dir)), u = jd_v3_cross(dir, right);
+    double d = 0;
+    for (int k = 0; k < 8; k++) {
+        jd_vec3 p = jd_v3(k & 1 ? half.x : -half.x, k & 2 ? half.y : -half.y, k & 4 ? half.z : -half.z);
+        double x = fabs(jd_v3_dot(p, right)), y = fabs(jd_v3_dot(p, u)), z = jd_v3_dot(p, dir);
+        d = fmax(d, fmax(z + x / tx, z + y / ty));
+    }
+    return (float)fmax(d, 1.3); /* the near plane stays in front of the object */
+}
+
+void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, float aspect, jd_scene_view *v)
 {
     jd_mesh_placement(m, &v->centre, &v->radius);
     float mm_per_unit = s->mm_per_unit > 0 ? s->mm_per_unit : 100.0f / (2.0f * v->radius);
     v->mm_per_world = mm_per_unit * v->radius;
-    v->cam_distance = s->cam_distance > 0 ? s->cam_distance : 2.7f;
     v->fov_deg = s->fov_deg > 1 ? s->fov_deg : 35.0f;
-    v->eye = jd_v3_scale(jd_v3_from_angles(s->cam_azimuth, s->cam_elevation), v->cam_distance);
+    jd_vec3 dir = jd_v3_from_angles(s->cam_azimuth, s->cam_elevation);
+    jd_vec3 half = jd_v3_scale(jd_v3_sub(m->bmax, m->bmin), 0.5f / v->radius);
+    v->cam_distance = s->cam_distance > 0 ? s->cam_distance
+                                          : fit_distance(half, dir, s->fit, v->fov_deg, aspect > 0 ? aspect : 1.0f);
+    v->eye = jd_v3_scale(dir, v->cam_distance);
     v->light_dir = jd_v3_from_angles(s->light_azimuth, s->light_elevation);
     v->eta = s->eta > 0.5f ? s->eta : 1.3f;
     float f0 = (v->eta - 1.0f) / (v->eta + 1.0f);
@@ -747,14 +772,13 @@ typedef struct frame_params {
 
 static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f)
 {
-    jd_scene_view sv;
-    jd_scene_view_of(s, r->d.mesh, &sv);
-    f->mm_per_world = sv.mm_per_world;
-
     /* A panel mounted at 90 or 270 degrees shows the picture sideways: the
      * camera sees the rotated aspect and clip space turns to meet the panel. */
     int quarter = r->d.rotation == 90 || r->d.rotation == 270;
     float aspect = quarter ? (float)r->d.height / (float)r->d.width : (float)r->d.width / (float)r->d.height;
+    jd_scene_view sv;
+    jd_scene_view_of(s, r->d.mesh, aspect, &sv);
+    f->mm_per_world = sv.mm_per_world;
     float dist = sv.cam_distance, fov = sv.fov_deg;
     f->eye = sv.eye;
     jd_mat4 view = jd_m4_look_at(f->eye, jd_v3(0, 0, 0), jd_v3(0, 1, 0));
@@ -1424,7 +1448,7 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     float vk[24];
     memcpy(vk, lk, sizeof lk);
     float vk_rest[8] = {s->cam_azimuth, s->cam_elevation, s->cam_distance, s->fov_deg, (float)r->d.width,
-                        (float)r->d.height, s->exposure, 0};
+                        (float)r->d.height, s->exposure, s->fit};
     memcpy(vk + 16, vk_rest, sizeof vk_rest);
     int light_still = r->light_key_valid && !memcmp(lk, r->light_key, sizeof lk);
     int view_still = light_still && r->view_key_valid && !memcmp(vk, r->view_key, sizeof vk);

@@ -55,7 +55,10 @@ typedef struct jd_renderer_desc {
 typedef struct jd_scene {
     jd_mode mode;
     float cam_azimuth, cam_elevation; /* degrees */
-    float cam_distance;   /* in bounding radii */
+    float cam_distance;   /* in bounding radii (half the box diagonal); 0: fit */
+    float fit;            /* [0.9] with cam_distance 0: the camera comes as near as
+                             keeps the object's bounding box within this share
+                             of the picture, across and up */
     float fov_deg;
     float light_azimuth, light_elevation;
     float light_intensity;
@@ -81,7 +84,8 @@ typedef struct jd_scene_view {
     float eta, f0;        /* refractive index, Schlick's F0 */
     float shininess, exposure;
 } jd_scene_view;
-void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, jd_scene_view *v);
+/* aspect: width / height of the picture as the camera sees it. */
+void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, float aspect, jd_scene_view *v);
 
 enum { JD_PASS_LIGHT_DEPTH, JD_PASS_CAPTURE, JD_PASS_SH, JD_PASS_SPREAD, JD_PASS_DIFFUSION, JD_PASS_MAIN, JD_PASS_COUNT };
 const char *jd_pass_name(int pass);

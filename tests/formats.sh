@@ -4,8 +4,14 @@
 # many exporters write it) and as a Draco file where draco_encoder exists,
 # each renders the same picture (RMSE 0 against the PLY's, under 0.001 for
 # the encoded Draco copy); a file named
-# .obj that holds a PLY is read as a PLY; then the public OBJ meshes in
-# ../shared/testdata/meshes render (said when absent).
+# .obj that holds a PLY is read as a PLY. The same tetrahedron as glTF: a
+# .gltf with its buffer inline (data: URI), one with a .bin beside it and a
+# .glb, each the same picture; a node's rotation placing it as the rotated
+# OBJ does; two nodes instancing it (8 triangles); extras.jade_material
+# choosing the material; hostile glTF refused by name. Then the public
+# meshes in ../shared/testdata (glTF samples, plain and Draco-compressed,
+# and OBJ) render (said when absent), and `jade convert` turns each format
+# into a Draco file that renders the same.
 jade=$1 shared=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -41,6 +47,97 @@ for f in "$@"; do
         ok "$f: the same picture as the PLY (RMSE $rmse)"
     else bad "$f: RMSE $rmse against the PLY"; fi
 done
+# glTF: the tetrahedron's 4 positions (floats) then 12 indices (uint16), 72 bytes.
+le32() { printf "\\$(printf %03o $(($1 & 255)))\\$(printf %03o $(($1 >> 8 & 255)))\\$(printf %03o $(($1 >> 16 & 255)))\\$(printf %03o $(($1 >> 24 & 255)))"; }
+{ for c in 0 0 0 1 0 0 0 1 0 0 0 1; do if [ "$c" = 1 ]; then printf '\000\000\200\077'; else printf '\000\000\000\000'; fi; done
+  for i in 0 2 1 0 1 3 0 3 2 1 2 3; do printf "\\$(printf %03o "$i")\\000"; done; } > "$tmp/tet.bin"
+# gltf_json URI [NODES] [MATERIAL]
+gltf_json() {
+    nodes=${2:-'{"mesh":0}'} roots=0 mat=""
+    case "$nodes" in *'},{'*) roots="0,1";; esac
+    [ -n "${3:-}" ] && mat=',"material":0'
+    printf '{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[%s]}],"nodes":[%s],' "$roots" "$nodes"
+    printf '"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1%s}]}],' "$mat"
+    [ -n "${3:-}" ] && printf '"materials":[{"extras":{"jade_material":"%s"}}],' "$3"
+    printf '"buffers":[{"byteLength":72%s}],' "$1"
+    printf '"bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":24}],'
+    printf '"accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},'
+    printf '{"bufferView":1,"componentType":5123,"count":12,"type":"SCALAR"}]}'
+}
+gltf_json ",\"uri\":\"data:application/octet-stream;base64,$(base64 -w0 "$tmp/tet.bin")\"" > "$tmp/tet_inline.gltf"
+gltf_json ',"uri":"tet.bin"' > "$tmp/tet_external.gltf"
+gltf_json "" > "$tmp/glb.json"
+while [ $(($(wc -c < "$tmp/glb.json") % 4)) -ne 0 ]; do printf ' ' >> "$tmp/glb.json"; done
+jl=$(wc -c < "$tmp/glb.json")
+{ printf 'glTF'; le32 2; le32 $((12 + 8 + jl + 8 + 72)); le32 "$jl"; printf 'JSON'; cat "$tmp/glb.json"
+  le32 72; printf 'BIN\000'; cat "$tmp/tet.bin"; } > "$tmp/tet.glb"
+cp "$tmp/tet.glb" "$tmp/glb_named.obj"
+for f in tet_inline.gltf tet_external.gltf tet.glb glb_named.obj; do
+    if ! render "$tmp/$f" "$tmp/$f.png"; then bad "$f: $(cat "$tmp/out")"; continue; fi
+    rmse=$("$jade" metric "$tmp/$f.png" "$tmp/tet.ply.png" | sed -n 's/.*"rmse": \([0-9.]*\).*/\1/p')
+    if [ "$rmse" = "0.000000" ]; then ok "$f: the same picture as the PLY (RMSE $rmse)"; else bad "$f: RMSE $rmse against the PLY"; fi
+done
+# A quarter turn about +Y (x' = z, z' = -x) by the node, against the OBJ turned by hand.
+printf 'v 0 0 0\nv 0 0 -1\nv 0 1 0\nv 1 0 0\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' > "$tmp/tet_turned.obj"
+gltf_json ',"uri":"tet.bin"' '{"mesh":0,"rotation":[0,0.70710678,0,0.70710678]}' > "$tmp/tet_turned.gltf"
+if render "$tmp/tet_turned.gltf" "$tmp/turned_gltf.png" && render "$tmp/tet_turned.obj" "$tmp/turned_obj.png"; then
+    rmse=$("$jade" metric "$tmp/turned_gltf.png" "$tmp/turned_obj.png" | sed -n 's/.*"rmse": \([0-9.]*\).*/\1/p')
+    if awk "BEGIN { exit !($rmse < 0.002) }"; then ok "node rotation places the mesh as the turned OBJ (RMSE $rmse)"
+    else bad "node rotation: RMSE $rmse against the turned OBJ"; fi
+else bad "turned tetrahedron: $(cat "$tmp/out")"; fi
+gltf_json ',"uri":"tet.bin"' '{"mesh":0},{"mesh":0,"translation":[3,0,0],"scale":[-1,1,1]}' > "$tmp/tet_twice.gltf"
+if render "$tmp/tet_twice.gltf" "$tmp/twice.png" && grep -q ": 8 triangles" "$tmp/out"; then ok "two nodes, one mirrored: 8 triangles merged"
+else bad "two instances: $(cat "$tmp/out")"; fi
+gltf_json ',"uri":"tet.bin"' "" ketchup > "$tmp/tet_ketchup.gltf"
+if render "$tmp/tet_ketchup.gltf" "$tmp/k.png" && grep -q ", ketchup," "$tmp/out"; then ok "extras.jade_material chooses ketchup"
+else bad "extras.jade_material: $(cat "$tmp/out")"; fi
+if "$jade" render --mesh "$tmp/tet_ketchup.gltf" --material skin1 --size 64x64 --out "$tmp/k2.png" 2>&1 | grep -q ", skin1,"; then
+    ok "--material overrides the file's material"; else bad "--material does not override extras"; fi
+# Hostile glTF: each refused with its reason, exit 1.
+refuse() {
+    printf '%s' "$2" > "$tmp/$1"
+    if "$jade" render --mesh "$tmp/$1" --size 64x64 --out "$tmp/r.png" > "$tmp/out" 2>&1; then bad "$1 was accepted"
+    elif grep -q "$3" "$tmp/out"; then ok "$1 refused: $(head -c 160 "$tmp/out" | head -1)"
+    else bad "$1: $(cat "$tmp/out")"; fi
+}
+refuse cyclic.gltf "$(gltf_json ',"uri":"tet.bin"' '{"mesh":0,"children":[1]},{"children":[0]}')" "cyclic"
+refuse escape.gltf "$(gltf_json ',"uri":"../etc/passwd"')" "not a plain relative file name"
+mkfifo "$tmp/pipe"
+refuse fifo.gltf "$(gltf_json ',"uri":"pipe"')" "not a regular file"
+refuse short.gltf "$(gltf_json ',"uri":"tet.bin"' | sed 's/"byteLength":24/"byteLength":240/')" "bufferView reaches"
+refuse points.gltf "$(gltf_json ',"uri":"tet.bin"' | sed 's/"indices":1/"indices":1,"mode":0/')" "no triangles"
+refuse badjson.gltf '{"asset":{"version":"2.0"},"meshes":[' "does not parse"
+refuse index.gltf "$(gltf_json ',"uri":"tet.bin"' | sed 's/"count":4,/"count":2,/')" "past its"
+# jade convert: every format to Draco, rendering as the original does.
+for f in tet.ply tet.obj tet_binary.stl tet_inline.gltf tet.glb tet_turned.gltf; do
+    if ! "$jade" convert "$tmp/$f" "$tmp/conv_$f.drc" > "$tmp/out" 2>&1; then bad "convert $f: $(cat "$tmp/out")"; continue; fi
+    if ! render "$tmp/conv_$f.drc" "$tmp/conv_$f.png" || ! render "$tmp/$f" "$tmp/orig_$f.png"; then bad "converted $f: $(cat "$tmp/out")"; continue; fi
+    rmse=$("$jade" metric "$tmp/conv_$f.png" "$tmp/orig_$f.png" | sed -n 's/.*"rmse": \([0-9.]*\).*/\1/p')
+    if awk "BEGIN { exit !($rmse < 0.001) }"; then ok "convert $f: the Draco file renders the same (RMSE $rmse)"
+    else bad "convert $f: RMSE $rmse"; fi
+done
+cp "$tmp/conv_tet.ply.drc" "$tmp/keep.drc"
+if "$jade" convert "$tmp/conv_tet.ply.drc" "$tmp/conv_tet.ply.drc" > "$tmp/out" 2>&1; then bad "convert over its input"
+elif cmp -s "$tmp/keep.drc" "$tmp/conv_tet.ply.drc"; then ok "convert refuses to write over its input: $(cat "$tmp/out")"
+else bad "convert changed its input"; fi
+if "$jade" convert "$tmp/tet.obj" "$tmp/x.png" > "$tmp/out" 2>&1; then bad "convert to .png accepted"
+else ok "convert refuses a non-.drc output: $(cat "$tmp/out")"; fi
+if [ -d "$shared/testdata/gltf" ]; then
+    for f in "$shared"/testdata/gltf/*.glb "$shared"/testdata/gltf/*.gltf; do
+        [ -f "$f" ] || continue
+        start=$(date +%s%N)
+        if render "$f" "$tmp/$(basename "$f").png"; then
+            ok "$(basename "$f"): $(sed -n 's/.*mesh [^:]*: \([0-9]* triangles\).*/\1/p' "$tmp/out") in $(( ($(date +%s%N) - start) / 1000000 )) ms"
+        else bad "$(basename "$f"): $(cat "$tmp/out")"; fi
+    done
+    if [ -f "$tmp/Box.glb.png" ] && [ -f "$tmp/Box_Draco.glb.png" ]; then
+        rmse=$("$jade" metric "$tmp/Box.glb.png" "$tmp/Box_Draco.glb.png" | sed -n 's/.*"rmse": \([0-9.]*\).*/\1/p')
+        if awk "BEGIN { exit !($rmse < 0.01) }"; then ok "Box_Draco.glb renders as Box.glb (RMSE $rmse)"
+        else bad "Box_Draco.glb against Box.glb: RMSE $rmse"; fi
+    fi
+else
+    echo "$shared/testdata/gltf is absent: the glTF samples are not tried"
+fi
 if [ -d "$shared/testdata/meshes" ]; then
     for f in "$shared"/testdata/meshes/*.obj; do
         start=$(date +%s%N)

@@ -8,8 +8,41 @@
 
 #include <stb_image.h>
 
+/* imgcmp --frame A.png MIN_SPAN: where the object lies in a picture (the
+ * pixels that differ from the top-left corner's colour by more than 8 in a
+ * channel); fails when it touches an edge (cropped) or spans less than
+ * MIN_SPAN of the picture along its longer extent (lost in the frame). */
+static int frame_check(const char *path, double min_span)
+{
+    int w, h, c;
+    unsigned char *a = stbi_load(path, &w, &h, &c, 4);
+    if (!a) { fprintf(stderr, "imgcmp: cannot read %s\n", path); return 2; }
+    int x0 = w, y0 = h, x1 = -1, y1 = -1;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const unsigned char *p = a + 4 * ((size_t)y * w + x);
+            int d = 0;
+            for (int k = 0; k < 3; k++) d = d > abs(p[k] - a[k]) ? d : abs(p[k] - a[k]);
+            if (d > 8) {
+                if (x < x0) x0 = x;
+                if (x > x1) x1 = x;
+                if (y < y0) y0 = y;
+                if (y > y1) y1 = y;
+            }
+        }
+    stbi_image_free(a);
+    if (x1 < 0) { printf("%s: no object pixel\n", path); return 1; }
+    double span = fmax((x1 - x0 + 1.0) / w, (y1 - y0 + 1.0) / h);
+    int touches = x0 == 0 || y0 == 0 || x1 == w - 1 || y1 == h - 1;
+    printf("%s: %dx%d, object x %d..%d y %d..%d, margins left %d right %d top %d bottom %d, spans %.2f (min %.2f): %s\n",
+           path, w, h, x0, x1, y0, y1, x0, w - 1 - x1, y0, h - 1 - y1, span, min_span,
+           touches ? "CROPPED" : span < min_span ? "TOO SMALL" : "ok");
+    return touches || span < min_span;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 4 && !strcmp(argv[1], "--frame")) return frame_check(argv[2], atof(argv[3]));
     if (argc < 3) {
         fprintf(stderr, "usage: imgcmp A.png B.png [--max-rmse X] [--max-bad-frac F] [--bad-threshold T]\n");
         return 2;

@@ -9,7 +9,7 @@ set -eu
 cd "$(dirname "$0")/.."
 seconds=${1:-3600}
 [ $# -gt 0 ] && shift
-targets=${*:-fuzz_draco_header fuzz_metadata fuzz_mesh_load fuzz_image fuzz_options}
+targets=${*:-fuzz_draco_header fuzz_metadata fuzz_mesh_load fuzz_gltf fuzz_image fuzz_options}
 if ! command -v clang >/dev/null || ! command -v clang++ >/dev/null; then
     echo "fuzz: clang is not installed (Debian: clang libclang-rt-14-dev)"
     exit 77
@@ -23,9 +23,12 @@ mkdir -p "$dir/findings"
 run() {
     t=$1
     mkdir -p "$dir/corpus-$t"
-    "$dir/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -close_fd_mask=3 \
-        -print_final_stats=1 -artifact_prefix="$dir/findings/$t-" \
-        "$dir/corpus-$t" "tests/fuzz/corpus/$t" >"$dir/$t.log" 2>&1
+    # From the build folder: the decoder's child processes, whose stderr
+    # libFuzzer closes, leave their sanitizer reports (.PID files) there.
+    top=$(pwd)
+    (cd "$dir" && "./$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -close_fd_mask=3 \
+        -print_final_stats=1 -artifact_prefix="findings/$t-" \
+        "corpus-$t" "$top/tests/fuzz/corpus/$t") >"$dir/$t.log" 2>&1
     rc=$?
     execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/$t.log")
     cov=$(grep -o 'cov: [0-9]*' "$dir/$t.log" | tail -n 1)

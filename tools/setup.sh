@@ -4,7 +4,7 @@
 #
 # A package source that fails is reported as such, by name. What jade cannot
 # build without (compiler, EGL/GLES, Draco, stb) stops the run; the rest
-# (the X11 and DRM/KMS platforms, meshoptimizer's triangle order, the GLSL
+# (the X11 and DRM/KMS platforms, meshoptimizer's triangle order, glTF through cJSON, the GLSL
 # validator, Xvfb, Python for the JSON checks, clang for the fuzz targets,
 # Mesa's build tools for the device compilers) is left out with the reason,
 # and the build and tests that do not need it go on: CMake
@@ -15,7 +15,7 @@ here=$(dirname "$0")
 . "$here/apt-source.sh"
 required="build-essential cmake pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libdraco-dev draco
           libstb-dev"
-optional="libgbm-dev libdrm-dev libx11-dev libmeshoptimizer-dev glslang-tools xvfb python3 clang libclang-rt-14-dev
+optional="libgbm-dev libdrm-dev libx11-dev libmeshoptimizer-dev libcjson-dev glslang-tools xvfb python3 clang libclang-rt-14-dev
           dpkg-dev meson ninja-build bison flex python3-mako libexpat1-dev zlib1g-dev"
 # shellcheck disable=SC2086
 missing_req=$("$here/missing-packages.sh" $required)

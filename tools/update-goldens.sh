@@ -8,7 +8,7 @@ sh tests/encode_bunny.sh ../shared build/testdata/bunny.drc
 for mode in none single dual full; do
     for mat in marble skin1 ketchup; do
         ./build/jade render --mesh build/testdata/bunny.drc --out "tests/golden/bunny_${mode}_${mat}.png" \
-            --size 256x256 --mode "$mode" --material "$mat" --cam-azimuth 20 --precision highp \
+            --size 256x256 --mode "$mode" --material "$mat" --cam-azimuth 20 --distance 2.7 --precision highp \
             --fragment-thickness >/dev/null
     done
 done

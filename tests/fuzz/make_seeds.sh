@@ -8,7 +8,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 c=$here/corpus
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-mkdir -p "$c/fuzz_draco_header" "$c/fuzz_metadata" "$c/fuzz_mesh_load" "$c/fuzz_image" "$c/fuzz_options"
+mkdir -p "$c/fuzz_draco_header" "$c/fuzz_metadata" "$c/fuzz_mesh_load" "$c/fuzz_gltf" "$c/fuzz_image" "$c/fuzz_options"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1/1 3/3/1 2/2/1\nf 1/1/1 2/2/1 4/3/1\nf 1/1/1 4/3/1 3/2/1\nf 2/2/1 3/3/1 4/1/1\n' > "$tmp/tet.obj"
 draco_encoder -i "$tmp/tet.obj" -o "$tmp/seq.drc" -cl 0 >/dev/null
 draco_encoder -i "$tmp/tet.obj" -o "$tmp/eb.drc" -cl 7 >/dev/null
@@ -45,6 +45,47 @@ python3 - "$c/fuzz_mesh_load/tri_binary.stl" <<'PY'
 import struct, sys
 open(sys.argv[1], 'wb').write(b'solid binary'.ljust(80, b' ') + struct.pack('<I', 1) +
                               struct.pack('<12fH', 0, 0, -1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0))
+PY
+# glTF: the tetrahedron as .gltf (inline buffer, a node with TRS, a
+# material's extras), as .glb, and as a .glb whose primitive is the Draco
+# encoding above (KHR_draco_mesh_compression), for both the reader and the load.
+python3 - "$tmp" "$c" <<'PY'
+import sys, struct, json, base64
+tmp, c = sys.argv[1], sys.argv[2]
+pos = struct.pack('<12f', 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1)
+idx = struct.pack('<12H', 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3)
+def doc(uri, blen, views, accessors, prim, extra={}):
+    d = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+         "nodes": [{"children": [1], "rotation": [0, 0.7071068, 0, 0.7071068]}, {"mesh": 0, "scale": [1, 2, 1]}],
+         "meshes": [{"primitives": [prim]}], "materials": [{"extras": {"jade_material": "skin1"}}],
+         "buffers": [dict({"byteLength": blen}, **({"uri": uri} if uri else {}))],
+         "bufferViews": views, "accessors": accessors}
+    d.update(extra)
+    return json.dumps(d).encode()
+plain_views = [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 24}]
+plain_acc = [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
+             {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}]
+plain_prim = {"attributes": {"POSITION": 0}, "indices": 1, "material": 0}
+def glb(j, b):
+    j += b' ' * (-len(j) % 4)
+    b += b'\0' * (-len(b) % 4)
+    return (b'glTF' + struct.pack('<II', 2, 28 + len(j) + len(b)) + struct.pack('<I', len(j)) + b'JSON' + j +
+            struct.pack('<I', len(b)) + b'BIN\0' + b)
+inline = doc('data:application/octet-stream;base64,' + base64.b64encode(pos + idx).decode(), 72, plain_views,
+             plain_acc, plain_prim)
+binary = glb(doc(None, 72, plain_views, plain_acc, plain_prim), pos + idx)
+drc = open(f'{tmp}/eb.drc', 'rb').read()
+draco = glb(doc(None, len(drc), [{"buffer": 0, "byteLength": len(drc)}],
+                [{"componentType": 5126, "count": 4, "type": "VEC3"},
+                 {"componentType": 5123, "count": 12, "type": "SCALAR"}],
+                {"attributes": {"POSITION": 0}, "indices": 1, "material": 0,
+                 "extensions": {"KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}}},
+                {"extensionsUsed": ["KHR_draco_mesh_compression"], "extensionsRequired": ["KHR_draco_mesh_compression"]}),
+            drc)
+for d in ('fuzz_gltf', 'fuzz_mesh_load'):
+    open(f'{c}/{d}/tet.gltf', 'wb').write(inline)
+    open(f'{c}/{d}/tet.glb', 'wb').write(binary)
+    open(f'{c}/{d}/tet_draco.glb', 'wb').write(draco)
 PY
 # Pictures: a 2x2 PFM with LF and with CR LF ends, a PPM, a BMP and a PNG
 # (the PNG written by python's zlib, no image library needed).

@@ -1,0 +1,688 @@
+#include "gltf_read.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "draco_shim.h"
+#include "mesh_format.h"
+
+enum { MAX_DEPTH = 64, MAX_INSTANCES = 65536 };
+
+/* cJSON keeps arrays as linked lists: every array jade indexes into is
+ * turned into a table once, so a file with a million accessors is read in
+ * linear time. */
+typedef struct table {
+    cJSON **item;
+    int count;
+} table;
+
+typedef struct blob {
+    const uint8_t *data;
+    size_t size;
+    uint8_t *owned;
+} blob;
+
+typedef struct gltf {
+    const char *path;
+    const jd_gltf_limits *lim;
+    char *err;
+    size_t errlen;
+    table buffers, views, accessors, meshes, nodes, materials;
+    blob *buf;
+    const uint8_t *bin; /* the GLB's binary chunk */
+    size_t bin_size;
+    size_t loaded_bytes;
+    jd_mesh_arrays *out;
+    size_t cap_v, cap_f; /* room in out's arrays */
+    int no_nrm, no_uv;   /* some primitive lacks them: drop them all */
+    int skipped;         /* primitives that are points or lines */
+} gltf;
+
+static int fail(gltf *g, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    if (g->err && g->errlen) vsnprintf(g->err, g->errlen, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+static int make_table(gltf *g, const cJSON *root, const char *key, table *t)
+{
+    const cJSON *a = cJSON_GetObjectItemCaseSensitive(root, key);
+    t->item = NULL;
+    t->count = 0;
+    if (!a) return 0;
+    if (!cJSON_IsArray(a)) return fail(g, "glTF '%s' is not an array", key);
+    int n = cJSON_GetArraySize(a);
+    t->item = calloc((size_t)n + 1, sizeof *t->item);
+    if (!t->item) return fail(g, "out of memory");
+    cJSON *e;
+    cJSON_ArrayForEach(e, a) t->item[t->count++] = e;
+    return 0;
+}
+
+static const cJSON *at(const table *t, const cJSON *index)
+{
+    if (!cJSON_IsNumber(index)) return NULL;
+    double v = index->valuedouble;
+    if (!(v >= 0 && v < t->count) || v != floor(v)) return NULL;
+    return t->item[(int)v];
+}
+
+static const cJSON *get(const cJSON *o, const char *key) { return cJSON_GetObjectItemCaseSensitive(o, key); }
+
+/* A non-negative integer field, or def when absent; -1 when malformed. */
+static double count_field(const cJSON *o, const char *key, double def)
+{
+    const cJSON *v = get(o, key);
+    if (!v) return def;
+    if (!cJSON_IsNumber(v) || !(v->valuedouble >= 0 && v->valuedouble <= 4.0e15) || v->valuedouble != floor(v->valuedouble))
+        return -1;
+    return v->valuedouble;
+}
+
+static int b64(int c)
+{
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    if (c == '+' || c == '-') return 62;
+    if (c == '/' || c == '_') return 63;
+    return -1;
+}
+
+static int load_data_uri(gltf *g, int i, const char *uri, blob *b)
+{
+    const char *comma = strstr(uri, ";base64,");
+    if (!comma) return fail(g, "glTF buffer %d: a data: URI that is not base64", i);
+    const char *s = comma + 8;
+    size_t len = strlen(s), cap = len / 4 * 3 + 3;
+    if (g->loaded_bytes + cap > g->lim->max_buffer_bytes)
+        return fail(g, "glTF buffers add up to more than %zu bytes", g->lim->max_buffer_bytes);
+    b->owned = malloc(cap ? cap : 1);
+    if (!b->owned) return fail(g, "out of memory");
+    size_t n = 0;
+    unsigned acc = 0;
+    int bits = 0;
+    for (size_t k = 0; k < len && s[k] != '='; k++) {
+        int v = b64((unsigned char)s[k]);
+        if (v < 0) return fail(g, "glTF buffer %d: byte %zu of its base64 data is not base64", i, k);
+        acc = acc << 6 | (unsigned)v;
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            b->owned[n++] = (uint8_t)(acc >> bits);
+        }
+    }
+    g->loaded_bytes += n;
+    b->data = b->owned;
+    b->size = n;
+    return 0;
+}
+
+/* A buffer file beside the glTF: a relative name that stays in its folder. */
+static int load_file_uri(gltf *g, int i, const char *uri, size_t need, blob *b)
+{
+    if (uri[0] == '/' || strstr(uri, "..") || strchr(uri, '\\') || strchr(uri, ':') || strchr(uri, '%'))
+        return fail(g, "glTF buffer %d: uri '%.200s' is not a plain relative file name; refused", i, uri);
+    char full[8192];
+    const char *slash = strrchr(g->path, '/');
+    int dir = slash ? (int)(slash - g->path + 1) : 0;
+    if (snprintf(full, sizeof full, "%.*s%s", dir, g->path, uri) >= (int)sizeof full)
+        return fail(g, "glTF buffer %d: path too long", i);
+    int fd = open(full, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0) return fail(g, "glTF buffer %d: cannot open %s: %s", i, full, strerror(errno));
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(fd);
+        return fail(g, "glTF buffer %d: %s is not a regular file", i, full);
+    }
+    if ((size_t)st.st_size < need) {
+        close(fd);
+        return fail(g, "glTF buffer %d: %s has %lld bytes, the file declares %zu", i, full, (long long)st.st_size, need);
+    }
+    if (g->loaded_bytes + need > g->lim->max_buffer_bytes) {
+        close(fd);
+        return fail(g, "glTF buffers add up to more than %zu bytes", g->lim->max_buffer_bytes);
+    }
+    b->owned = malloc(need ? need : 1);
+    if (!b->owned) {
+        close(fd);
+        return fail(g, "out of memory");
+    }
+    size_t got = 0;
+    while (got < need) {
+        ssize_t k = read(fd, b->owned + got, need - got);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) break;
+        got += (size_t)k;
+    }
+    close(fd);
+    if (got < need) return fail(g, "glTF buffer %d: %s could not be read whole", i, full);
+    g->loaded_bytes += need;
+    b->data = b->owned;
+    b->size = need;
+    return 0;
+}
+
+static int load_buffers(gltf *g)
+{
+    g->buf = calloc((size_t)g->buffers.count + 1, sizeof *g->buf);
+    if (!g->buf) return fail(g, "out of memory");
+    for (int i = 0; i < g->buffers.count; i++) {
+        const cJSON *b = g->buffers.item[i];
+        double len = count_field(b, "byteLength", -1);
+        if (len < 0) return fail(g, "glTF buffer %d has no valid byteLength", i);
+        const cJSON *uri = get(b, "uri");
+        if (!uri) {
+            if (i != 0 || !g->bin) return fail(g, "glTF buffer %d has no uri and there is no GLB binary chunk", i);
+            if (len > (double)g->bin_size)
+                return fail(g, "glTF buffer 0 declares %.0f bytes; the GLB binary chunk holds %zu", len, g->bin_size);
+            g->buf[i].data = g->bin;
+            g->buf[i].size = (size_t)len;
+        } else if (!cJSON_IsString(uri)) {
+            return fail(g, "glTF buffer %d: uri is not a string", i);
+        } else if (!strncmp(uri->valuestring, "data:", 5)) {
+            if (load_data_uri(g, i, uri->valuestring, &g->buf[i])) return -1;
+            if (g->buf[i].size < len) return fail(g, "glTF buffer %d declares %.0f bytes; its data holds %zu", i, len, g->buf[i].size);
+        } else {
+            if (len > (double)g->lim->max_buffer_bytes)
+                return fail(g, "glTF buffer %d declares %.0f bytes, over the limit of %zu", i, len, g->lim->max_buffer_bytes);
+            if (load_file_uri(g, i, uri->valuestring, (size_t)len, &g->buf[i])) return -1;
+        }
+    }
+    return 0;
+}
+
+/* The bytes of a buffer view, checked against its buffer. */
+static int view_bytes(gltf *g, const cJSON *index, const uint8_t **data, size_t *size, size_t *stride)
+{
+    const cJSON *v = at(&g->views, index);
+    if (!v) return fail(g, "glTF refers to a bufferView that does not exist");
+    const cJSON *bi = get(v, "buffer");
+    const cJSON *b = at(&g->buffers, bi);
+    double off = count_field(v, "byteOffset", 0), len = count_field(v, "byteLength", -1),
+           st = count_field(v, "byteStride", 0);
+    if (!b || off < 0 || len < 0 || st < 0 || (st && (st < 4 || st > 252)))
+        return fail(g, "glTF bufferView has a missing buffer or an invalid offset, length or stride");
+    const blob *bl = &g->buf[(int)bi->valuedouble];
+    if (off + len > (double)bl->size)
+        return fail(g, "glTF bufferView reaches byte %.0f of a buffer of %zu bytes", off + len, bl->size);
+    *data = bl->data + (size_t)off;
+    *size = (size_t)len;
+    if (stride) *stride = (size_t)st;
+    return 0;
+}
+
+static int type_comps(const char *t)
+{
+    static const struct { const char *name; int n; } types[] = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}};
+    for (size_t i = 0; i < sizeof types / sizeof types[0]; i++)
+        if (t && !strcmp(t, types[i].name)) return types[i].n;
+    return 0;
+}
+
+static int comp_size(int type)
+{
+    switch (type) {
+    case 5120: case 5121: return 1;
+    case 5122: case 5123: return 2;
+    case 5125: case 5126: return 4;
+    default: return 0;
+    }
+}
+
+static double read_comp(const uint8_t *p, int type, int normalized)
+{
+    switch (type) {
+    case 5120: { int8_t v; memcpy(&v, p, 1); return normalized ? fmax(v / 127.0, -1.0) : v; }
+    case 5121: return normalized ? p[0] / 255.0 : p[0];
+    case 5122: { int16_t v; memcpy(&v, p, 2); return normalized ? fmax(v / 32767.0, -1.0) : v; }
+    case 5123: { uint16_t v; memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
+    case 5125: { uint32_t v; memcpy(&v, p, 4); return v; }
+    default: { float v; memcpy(&v, p, 4); return v; }
+    }
+}
+
+/* An accessor as `comps` doubles per element (or, for indices, integers in
+ * doubles), its element count in *count; the caller frees *out. */
+static int read_accessor(gltf *g, const cJSON *index, const char *what, int comps, int indices, double **out,
+                         size_t *count)
+{
+    const cJSON *a = at(&g->accessors, index);
+    *out = NULL;
+    if (!a) return fail(g, "glTF %s refers to an accessor that does not exist", what);
+    if (get(a, "sparse")) return fail(g, "glTF %s accessor is sparse; jade does not read sparse accessors", what);
+    const cJSON *ty = get(a, "type");
+    int n = type_comps(cJSON_IsString(ty) ? ty->valuestring : NULL);
+    double ct = count_field(a, "componentType", -1), cnt = count_field(a, "count", -1), off = count_field(a, "byteOffset", 0);
+    int cs = ct >= 0 && ct < 1e6 ? comp_size((int)ct) : 0;
+    if (n != comps || !cs || cnt < 1 || off < 0)
+        return fail(g, "glTF %s accessor is not %d component(s) of a known type with a count", what, comps);
+    if (indices ? !(ct == 5121 || ct == 5123 || ct == 5125) : ct == 5125)
+        return fail(g, "glTF %s accessor has component type %.0f, not allowed there", what, ct);
+    int normalized = cJSON_IsTrue(get(a, "normalized"));
+    if (cnt > (indices ? 3.0 * g->lim->max_faces + 2 : (double)g->lim->max_vertices))
+        return fail(g, "glTF %s accessor has %.0f elements, over the limit", what, cnt);
+    size_t elems = (size_t)cnt, elem = (size_t)cs * (size_t)n;
+    double *v = calloc(elems * (size_t)n, sizeof *v);
+    if (!v) return fail(g, "out of memory");
+    const cJSON *bv = get(a, "bufferView");
+    if (bv) { /* without one, every element is zero */
+        const uint8_t *data;
+        size_t size, stride;
+        if (view_bytes(g, bv, &data, &size, &stride)) { free(v); return -1; }
+        if (!stride) stride = elem;
+        if (off + (double)stride * (double)(elems - 1) + (double)elem > (double)size) {
+            free(v);
+            return fail(g, "glTF %s accessor reaches past the end of its bufferView", what);
+        }
+        for (size_t e = 0; e < elems; e++)
+            for (int c = 0; c < n; c++)
+                v[e * (size_t)n + (size_t)c] = read_comp(data + (size_t)off + e * stride + (size_t)c * (size_t)cs, (int)ct, normalized);
+    }
+    *out = v;
+    *count = elems;
+    return 0;
+}
+
+/* Room for nv more vertices and nf more faces in the merged mesh. */
+static int grow(gltf *g, size_t nv, size_t nf)
+{
+    jd_mesh_arrays *m = g->out;
+    if (m->nv + nv > g->lim->max_vertices || m->nf + nf > g->lim->max_faces)
+        return fail(g, "the scene has more than %u vertices or %u faces, over the limit", g->lim->max_vertices,
+                    g->lim->max_faces);
+    if (m->nv + nv > g->cap_v) {
+        size_t cap = (m->nv + nv) * 2;
+        if (cap > g->lim->max_vertices) cap = g->lim->max_vertices;
+        float *p = realloc(m->pos, cap * 3 * sizeof *p), *q = realloc(m->nrm, cap * 3 * sizeof *q);
+        if (p) m->pos = p;
+        if (q) m->nrm = q;
+        float *u = realloc(m->uv, cap * 2 * sizeof *u);
+        if (u) m->uv = u;
+        if (!p || !q || !u) return fail(g, "out of memory");
+        g->cap_v = cap;
+    }
+    if (m->nf + nf > g->cap_f) {
+        size_t cap = (m->nf + nf) * 2;
+        if (cap > g->lim->max_faces) cap = g->lim->max_faces;
+        uint32_t *i = realloc(m->idx, cap * 3 * sizeof *i);
+        if (!i) return fail(g, "out of memory");
+        m->idx = i;
+        g->cap_f = cap;
+    }
+    return 0;
+}
+
+/* Appends a primitive's vertices placed by `xf` (column-major 4x4) and its
+ * triangles (turned round where the transform mirrors). */
+static int append(gltf *g, const double *xf, size_t nv, const double *pos, const double *nrm, const double *uv,
+                  const uint32_t *tri, size_t nf)
+{
+    if (grow(g, nv, nf)) return -1;
+    jd_mesh_arrays *m = g->out;
+    /* Normals go through the inverse transpose: the cofactor matrix. */
+    double c[9];
+    c[0] = xf[5] * xf[10] - xf[6] * xf[9];
+    c[1] = xf[6] * xf[8] - xf[4] * xf[10];
+    c[2] = xf[4] * xf[9] - xf[5] * xf[8];
+    c[3] = xf[2] * xf[9] - xf[1] * xf[10];
+    c[4] = xf[0] * xf[10] - xf[2] * xf[8];
+    c[5] = xf[1] * xf[8] - xf[0] * xf[9];
+    c[6] = xf[1] * xf[6] - xf[2] * xf[5];
+    c[7] = xf[2] * xf[4] - xf[0] * xf[6];
+    c[8] = xf[0] * xf[5] - xf[1] * xf[4];
+    double det = xf[0] * c[0] + xf[4] * c[3] + xf[8] * c[6];
+    for (size_t i = 0; i < nv; i++) {
+        const double *p = pos + 3 * i;
+        float *o = m->pos + 3 * (m->nv + i);
+        for (int k = 0; k < 3; k++) o[k] = (float)(xf[k] * p[0] + xf[4 + k] * p[1] + xf[8 + k] * p[2] + xf[12 + k]);
+        if (nrm) {
+            const double *q = nrm + 3 * i;
+            double t[3];
+            for (int k = 0; k < 3; k++) t[k] = c[3 * k] * q[0] + c[3 * k + 1] * q[1] + c[3 * k + 2] * q[2];
+            double l = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            for (int k = 0; k < 3; k++) m->nrm[3 * (m->nv + i) + (size_t)k] = l > 0 ? (float)(t[k] / l) : 0.0f;
+        }
+        if (uv) {
+            m->uv[2 * (m->nv + i)] = (float)uv[2 * i];
+            m->uv[2 * (m->nv + i) + 1] = (float)uv[2 * i + 1];
+        }
+    }
+    for (size_t f = 0; f < nf; f++) {
+        uint32_t a = tri[3 * f], b = tri[3 * f + 1], d = tri[3 * f + 2];
+        if (det < 0) { uint32_t s = b; b = d; d = s; }
+        uint32_t *o = m->idx + 3 * (m->nf + f);
+        o[0] = m->nv + a;
+        o[1] = m->nv + b;
+        o[2] = m->nv + d;
+    }
+    if (!nrm) g->no_nrm = 1;
+    if (!uv) g->no_uv = 1;
+    m->nv += (uint32_t)nv;
+    m->nf += (uint32_t)nf;
+    return 0;
+}
+
+static void take_material(gltf *g, const cJSON *prim)
+{
+    const cJSON *mat = at(&g->materials, get(prim, "material"));
+    const cJSON *name = get(get(mat, "extras"), "jade_material");
+    if (g->out->material[0] || !cJSON_IsString(name)) return;
+    const char *s = name->valuestring;
+    size_t n = strlen(s);
+    if (n == 0 || n >= sizeof g->out->material) return;
+    for (size_t i = 0; i < n; i++)
+        if (!((s[i] >= 'a' && s[i] <= 'z') || (s[i] >= '0' && s[i] <= '9') || s[i] == '_' || s[i] == '-')) return;
+    memcpy(g->out->material, s, n + 1);
+}
+
+/* Triangles from a primitive's indices (or 0..count-1) in its mode. */
+static int triangles(gltf *g, int mode, const double *ind, size_t nind, size_t nv, uint32_t **tri, size_t *nf)
+{
+    size_t t = mode == 4 ? nind / 3 : nind >= 3 ? nind - 2 : 0;
+    *tri = malloc(sizeof(uint32_t) * 3 * (t ? t : 1));
+    if (!*tri) return fail(g, "out of memory");
+    size_t k = 0;
+    for (size_t i = 0; i < t; i++) {
+        size_t a, b, c;
+        if (mode == 4) { a = 3 * i; b = a + 1; c = a + 2; }
+        else if (mode == 5) { a = i; b = i % 2 ? i + 2 : i + 1; c = i % 2 ? i + 1 : i + 2; }
+        else { a = 0; b = i + 1; c = i + 2; }
+        double va = ind ? ind[a] : (double)a, vb = ind ? ind[b] : (double)b, vc = ind ? ind[c] : (double)c;
+        if (va >= nv || vb >= nv || vc >= nv) {
+            free(*tri);
+            *tri = NULL;
+            return fail(g, "glTF primitive index %.0f is past its %zu vertices", fmax(va, fmax(vb, vc)), nv);
+        }
+        if (va == vb || vb == vc || va == vc) continue; /* strips' degenerate joins */
+        (*tri)[3 * k] = (uint32_t)va;
+        (*tri)[3 * k + 1] = (uint32_t)vb;
+        (*tri)[3 * k + 2] = (uint32_t)vc;
+        k++;
+    }
+    *nf = k;
+    return 0;
+}
+
+static int draco_primitive(gltf *g, const double *xf, const cJSON *ext)
+{
+    const uint8_t *data;
+    size_t size;
+    if (view_bytes(g, get(ext, "bufferView"), &data, &size, NULL)) return -1;
+    const cJSON *attrs = get(ext, "attributes");
+    const char *names[3] = {"POSITION", "NORMAL", "TEXCOORD_0"};
+    int ids[3];
+    for (int k = 0; k < 3; k++) {
+        double v = count_field(attrs, names[k], -1);
+        ids[k] = v >= 0 && v < 1e6 ? (int)v : -1;
+    }
+    if (ids[0] < 0) return fail(g, "glTF Draco primitive has no POSITION attribute id");
+    jd_mesh_arrays d = {0};
+    char msg[256] = "";
+    if (jd_draco_read_ids(data, size, ids, g->lim->max_vertices, g->lim->max_faces, &d, msg, sizeof msg))
+        return fail(g, "glTF Draco primitive: %s", msg);
+    for (size_t i = 0; i < 3 * (size_t)d.nf; i++)
+        if (d.idx[i] >= d.nv) {
+            jd_mesh_arrays_free(&d);
+            return fail(g, "glTF Draco primitive refers to a vertex past its %u", d.nv);
+        }
+    size_t nv = d.nv;
+    double *p = malloc(sizeof(double) * 3 * nv), *n = d.nrm ? malloc(sizeof(double) * 3 * nv) : NULL,
+           *u = d.uv ? malloc(sizeof(double) * 2 * nv) : NULL;
+    int rc = -1;
+    if (p && (!d.nrm || n) && (!d.uv || u)) {
+        for (size_t i = 0; i < 3 * nv; i++) p[i] = d.pos[i];
+        for (size_t i = 0; n && i < 3 * nv; i++) n[i] = d.nrm[i];
+        for (size_t i = 0; u && i < 2 * nv; i++) u[i] = d.uv[i];
+        rc = append(g, xf, nv, p, n, u, d.idx, d.nf);
+    } else {
+        fail(g, "out of memory");
+    }
+    free(p);
+    free(n);
+    free(u);
+    jd_mesh_arrays_free(&d);
+    return rc;
+}
+
+static int primitive(gltf *g, const double *xf, const cJSON *prim)
+{
+    double mode = count_field(prim, "mode", 4);
+    if (mode < 4 || mode > 6) {
+        g->skipped++;
+        return 0;
+    }
+    take_material(g, prim);
+    const cJSON *ext = get(get(prim, "extensions"), "KHR_draco_mesh_compression");
+    if (ext) return draco_primitive(g, xf, ext);
+    const cJSON *attrs = get(prim, "attributes");
+    const cJSON *pi = get(attrs, "POSITION"), *ni = get(attrs, "NORMAL"), *ui = get(attrs, "TEXCOORD_0"),
+                *ii = get(prim, "indices");
+    if (!pi) return fail(g, "glTF primitive has no POSITION attribute");
+    double *pos = NULL, *nrm = NULL, *uv = NULL, *ind = NULL;
+    uint32_t *tri = NULL;
+    size_t nv = 0, nn = 0, nu = 0, ni_count = 0, nf = 0;
+    int rc = read_accessor(g, pi, "POSITION", 3, 0, &pos, &nv);
+    if (!rc && ni) rc = read_accessor(g, ni, "NORMAL", 3, 0, &nrm, &nn);
+    if (!rc && ui) rc = read_accessor(g, ui, "TEXCOORD_0", 2, 0, &uv, &nu);
+    if (!rc && ii) rc = read_accessor(g, ii, "indices", 1, 1, &ind, &ni_count);
+    if (!rc && ((nrm && nn != nv) || (uv && nu != nv)))
+        rc = fail(g, "glTF primitive's attributes have different counts (%zu positions)", nv);
+    if (!rc && nv > g->lim->max_vertices) rc = fail(g, "glTF primitive has %zu vertices, over the limit", nv);
+    if (!rc) rc = triangles(g, (int)mode, ind, ii ? ni_count : nv, nv, &tri, &nf);
+    if (!rc) rc = append(g, xf, nv, pos, nrm, uv, tri, nf);
+    free(pos);
+    free(nrm);
+    free(uv);
+    free(ind);
+    free(tri);
+    return rc;
+}
+
+static void mat_mul(const double *a, const double *b, double *out)
+{
+    double r[16];
+    for (int c = 0; c < 4; c++)
+        for (int k = 0; k < 4; k++)
+            r[4 * c + k] = a[k] * b[4 * c] + a[4 + k] * b[4 * c + 1] + a[8 + k] * b[4 * c + 2] + a[12 + k] * b[4 * c + 3];
+    memcpy(out, r, sizeof r);
+}
+
+static int numbers(const cJSON *a, int n, double *out)
+{
+    if (!cJSON_IsArray(a) || cJSON_GetArraySize(a) != n) return 0;
+    const cJSON *e;
+    int i = 0;
+    cJSON_ArrayForEach(e, a) {
+        if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble)) return 0;
+        out[i++] = e->valuedouble;
+    }
+    return 1;
+}
+
+/* The node's local matrix: `matrix`, or translation * rotation * scale. */
+static int local_matrix(gltf *g, const cJSON *node, double *m)
+{
+    static const double id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    memcpy(m, id, sizeof id);
+    const cJSON *mx = get(node, "matrix");
+    if (mx) return numbers(mx, 16, m) ? 0 : fail(g, "glTF node matrix is not 16 finite numbers");
+    double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
+    if ((get(node, "translation") && !numbers(get(node, "translation"), 3, t)) ||
+        (get(node, "rotation") && !numbers(get(node, "rotation"), 4, q)) ||
+        (get(node, "scale") && !numbers(get(node, "scale"), 3, s)))
+        return fail(g, "glTF node translation, rotation or scale is not finite numbers");
+    double x = q[0], y = q[1], z = q[2], w = q[3];
+    double r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
+                   2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+                   2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < 3; k++) m[4 * c + k] = r[3 * c + k] * s[c];
+    m[12] = t[0];
+    m[13] = t[1];
+    m[14] = t[2];
+    return 0;
+}
+
+/* Walks the node tree from the scene's roots with an explicit stack: a
+ * cyclic or very deep hierarchy is refused, not recursed into. */
+static int walk(gltf *g, const cJSON *roots)
+{
+    struct frame {
+        const cJSON *node;
+        double xf[16];
+        int depth;
+    } *stack = malloc(sizeof *stack * (MAX_DEPTH * 64 + 64));
+    if (!stack) return fail(g, "out of memory");
+    static const double id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    int sp = 0, visits = 0, rc = 0;
+    const cJSON *r;
+    cJSON_ArrayForEach(r, roots) {
+        const cJSON *node = at(&g->nodes, r);
+        if (!node) { rc = fail(g, "glTF scene refers to a node that does not exist"); break; }
+        stack[0].node = node;
+        memcpy(stack[0].xf, id, sizeof id);
+        stack[0].depth = 0;
+        sp = 1;
+        while (sp && !rc) {
+            struct frame f = stack[--sp];
+            if (++visits > MAX_INSTANCES) { rc = fail(g, "glTF scene places more than %d nodes (cyclic?)", MAX_INSTANCES); break; }
+            double local[16];
+            if ((rc = local_matrix(g, f.node, local))) break;
+            mat_mul(f.xf, local, f.xf);
+            const cJSON *mesh = get(f.node, "mesh");
+            if (mesh) {
+                const cJSON *m = at(&g->meshes, mesh);
+                if (!m) { rc = fail(g, "glTF node refers to a mesh that does not exist"); break; }
+                const cJSON *prims = get(m, "primitives"), *p;
+                cJSON_ArrayForEach(p, prims) if ((rc = primitive(g, f.xf, p))) break;
+                if (rc) break;
+            }
+            const cJSON *kids = get(f.node, "children"), *k;
+            cJSON_ArrayForEach(k, kids) {
+                const cJSON *child = at(&g->nodes, k);
+                if (!child) { rc = fail(g, "glTF node refers to a child that does not exist"); break; }
+                if (f.depth + 1 >= MAX_DEPTH || sp >= MAX_DEPTH * 64 + 63) {
+                    rc = fail(g, "glTF node tree is deeper or wider than jade walks (%d levels); cyclic?", MAX_DEPTH);
+                    break;
+                }
+                stack[sp].node = child;
+                memcpy(stack[sp].xf, f.xf, sizeof f.xf);
+                stack[sp].depth = f.depth + 1;
+                sp++;
+            }
+        }
+        if (rc) break;
+    }
+    free(stack);
+    return rc;
+}
+
+static uint32_t le32(const uint8_t *p) { return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24; }
+
+int jd_gltf_read(const uint8_t *buf, size_t n, const char *path, const jd_gltf_limits *lim, jd_mesh_arrays *out,
+                 char *err, size_t errlen)
+{
+    gltf g = {.path = path, .lim = lim, .err = err, .errlen = errlen, .out = out};
+    memset(out, 0, sizeof *out);
+    const char *json = (const char *)buf;
+    size_t json_len = n;
+    if (n >= 12 && !memcmp(buf, "glTF", 4)) {
+        /* GLB: header, a JSON chunk, then an optional binary chunk. */
+        if (le32(buf + 4) != 2) return fail(&g, "GLB version %u; jade reads version 2", le32(buf + 4));
+        if (le32(buf + 8) > n || le32(buf + 8) < 20 || n < 20)
+            return fail(&g, "GLB declares %u bytes; the file has %zu (a GLB holds at least 20)", le32(buf + 8), n);
+        size_t total = le32(buf + 8), len0 = le32(buf + 12);
+        if (le32(buf + 16) != 0x4E4F534Au || len0 > total - 20)
+            return fail(&g, "GLB's first chunk is not JSON or runs past the file");
+        json = (const char *)buf + 20;
+        json_len = len0;
+        size_t at1 = 20 + len0;
+        if (at1 + 8 <= total && le32(buf + at1 + 4) == 0x004E4942u) {
+            size_t len1 = le32(buf + at1);
+            if (len1 > total - at1 - 8) return fail(&g, "GLB's binary chunk runs past the file");
+            g.bin = buf + at1 + 8;
+            g.bin_size = len1;
+        }
+    }
+    /* cJSON 1.7.15 compares keywords ("true", "null") with strncmp and
+     * reads past a buffer that is not NUL-terminated (found by fuzzing):
+     * it gets a terminated copy. */
+    char *text = malloc(json_len + 1);
+    if (!text) return fail(&g, "out of memory");
+    memcpy(text, json, json_len);
+    text[json_len] = 0;
+    cJSON *root = cJSON_ParseWithLength(text, json_len + 1);
+    if (!root) {
+        const char *e = cJSON_GetErrorPtr();
+        ptrdiff_t at = e && e >= text && e <= text + json_len ? e - text : -1;
+        free(text);
+        return fail(&g, "glTF JSON does not parse (at byte %td)", at);
+    }
+    free(text);
+    int rc = -1;
+    const cJSON *ver = get(get(root, "asset"), "version");
+    if (!cJSON_IsString(ver) || strncmp(ver->valuestring, "2.", 2)) {
+        fail(&g, "glTF asset.version is not 2.x");
+        goto done;
+    }
+    const cJSON *req = get(root, "extensionsRequired"), *e;
+    cJSON_ArrayForEach(e, req) if (!cJSON_IsString(e) || strcmp(e->valuestring, "KHR_draco_mesh_compression")) {
+        fail(&g, "glTF requires extension %s, which jade does not read", cJSON_IsString(e) ? e->valuestring : "(not a name)");
+        goto done;
+    }
+    if (make_table(&g, root, "buffers", &g.buffers) || make_table(&g, root, "bufferViews", &g.views) ||
+        make_table(&g, root, "accessors", &g.accessors) || make_table(&g, root, "meshes", &g.meshes) ||
+        make_table(&g, root, "nodes", &g.nodes) || make_table(&g, root, "materials", &g.materials) || load_buffers(&g))
+        goto done;
+    table scenes;
+    if (make_table(&g, root, "scenes", &scenes)) goto done;
+    const cJSON *scene = NULL;
+    if (scenes.count) scene = get(root, "scene") ? at(&scenes, get(root, "scene")) : scenes.item[0];
+    if (scenes.count && !scene) {
+        free(scenes.item);
+        fail(&g, "glTF's default scene does not exist");
+        goto done;
+    }
+    free(scenes.item);
+    if (scene) {
+        rc = walk(&g, get(scene, "nodes"));
+    } else {
+        /* No scene: every mesh once, where it stands. */
+        static const double id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+        rc = 0;
+        for (int i = 0; i < g.meshes.count && !rc; i++) {
+            const cJSON *p;
+            cJSON_ArrayForEach(p, get(g.meshes.item[i], "primitives")) if ((rc = primitive(&g, id, p))) break;
+        }
+    }
+    if (!rc && (out->nv == 0 || out->nf == 0))
+        rc = fail(&g, "glTF's scene has no triangles%s", g.skipped ? " (only points or lines)" : "");
+    if (!rc) {
+        if (g.no_nrm) { free(out->nrm); out->nrm = NULL; }
+        if (g.no_uv) { free(out->uv); out->uv = NULL; }
+    }
+done:
+    cJSON_Delete(root);
+    for (int i = 0; g.buf && i < g.buffers.count; i++) free(g.buf[i].owned);
+    free(g.buf);
+    free(g.buffers.item);
+    free(g.views.item);
+    free(g.accessors.item);
+    free(g.meshes.item);
+    free(g.nodes.item);
+    free(g.materials.item);
+    if (rc) jd_mesh_arrays_free(out);
+    return rc;
+}

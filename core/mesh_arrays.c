@@ -1,0 +1,87 @@
+#include "mesh_arrays.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "draco_shim.h"
+
+#ifdef JD_HAVE_MESHOPT
+#include <meshoptimizer.h>
+#endif
+
+void jd_mesh_arrays_free(jd_mesh_arrays *m)
+{
+    free(m->pos);
+    free(m->nrm);
+    free(m->uv);
+    free(m->idx);
+    memset(m, 0, sizeof *m);
+}
+
+#ifdef JD_HAVE_MESHOPT
+static void turn_round(uint32_t *idx, size_t n)
+{
+    for (size_t t = 0; t + 2 < n; t += 3) {
+        uint32_t s = idx[t + 1];
+        idx[t + 1] = idx[t + 2];
+        idx[t + 2] = s;
+    }
+}
+#endif
+
+void jd_mesh_arrays_order(jd_mesh_arrays *m)
+{
+#ifdef JD_HAVE_MESHOPT
+    size_t n = 3 * (size_t)m->nf;
+    for (size_t i = 0; i < n; i++)
+        if (m->idx[i] >= m->nv) return;
+    /* Non-finite positions (refused later by the parent) must not reach the
+     * overdraw sort. */
+    for (size_t i = 0; i < 3 * (size_t)m->nv; i++)
+        if (!isfinite(m->pos[i])) return;
+    /* The overdraw order sorts by which way triangles face: a mesh wound
+     * inside out (the parent turns it round later) is ordered turned round. */
+    double vol6 = 0;
+    for (size_t t = 0; t + 2 < n; t += 3) {
+        const float *a = m->pos + 3 * (size_t)m->idx[t], *b = m->pos + 3 * (size_t)m->idx[t + 1],
+                    *c = m->pos + 3 * (size_t)m->idx[t + 2];
+        vol6 += a[0] * ((double)b[1] * c[2] - (double)b[2] * c[1]) - a[1] * ((double)b[0] * c[2] - (double)b[2] * c[0]) +
+                a[2] * ((double)b[0] * c[1] - (double)b[1] * c[0]);
+    }
+    /* Ordering is a nicety: a mesh near the child's memory limit keeps its
+     * file order rather than failing to load. */
+    uint32_t *tmp = malloc(sizeof(uint32_t) * (n ? n : 1));
+    if (!tmp) return;
+    /* meshoptimizer's own scratch (about 40 bytes per vertex and index) is
+     * not checked by it: try it first. */
+    void *probe = malloc(48 * ((size_t)m->nv + n) + 4096);
+    if (!probe) {
+        free(tmp);
+        return;
+    }
+    free(probe);
+    if (vol6 < 0) turn_round(m->idx, n);
+    meshopt_optimizeVertexCache(tmp, m->idx, n, m->nv);
+    meshopt_optimizeOverdraw(m->idx, tmp, n, m->pos, m->nv, 3 * sizeof(float), 1.05f);
+    if (vol6 < 0) turn_round(m->idx, n); /* the file's winding: the parent decides what to do with it */
+    free(tmp);
+#else
+    (void)m;
+#endif
+}
+
+int jd_mesh_arrays_emit(const jd_mesh_arrays *m, jd_record_write_fn write, void *user)
+{
+    jd_draco_record_header h = {JD_DRACO_RECORD_MAGIC, m->nv, m->nf,
+                                (m->nrm ? (uint32_t)JD_DRACO_HAS_NORMALS : 0u) |
+                                    (m->uv ? (uint32_t)JD_DRACO_HAS_UVS : 0u) |
+                                    (m->material[0] ? (uint32_t)JD_DRACO_HAS_MATERIAL : 0u)};
+    size_t nv = m->nv;
+    if (write(user, &h, sizeof h) || write(user, m->pos, sizeof(float) * 3 * nv) ||
+        (m->nrm && write(user, m->nrm, sizeof(float) * 3 * nv)) || (m->uv && write(user, m->uv, sizeof(float) * 2 * nv)) ||
+        write(user, m->idx, sizeof(uint32_t) * 3 * (size_t)m->nf) ||
+        (m->material[0] && write(user, m->material, sizeof m->material)))
+        return -1;
+    return 0;
+}

@@ -1,0 +1,39 @@
+/* A decoded mesh as plain heap arrays, inside the decoder's child process:
+ * what every format's reader produces, ordered for the GPU and streamed to
+ * the parent as one record (see draco_shim.h). Internal: not installed. */
+#ifndef JD_MESH_ARRAYS_H
+#define JD_MESH_ARRAYS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct jd_mesh_arrays {
+    uint32_t nv, nf;
+    float *pos;      /* 3 per vertex */
+    float *nrm;      /* 3 per vertex, or NULL */
+    float *uv;       /* 2 per vertex, or NULL */
+    uint32_t *idx;   /* 3 per face */
+    char material[32]; /* a material the file asks for (glTF extras), or "" */
+} jd_mesh_arrays;
+
+typedef int (*jd_record_write_fn)(void *user, const void *data, size_t n);
+
+void jd_mesh_arrays_free(jd_mesh_arrays *m);
+
+/* Triangles in the order a GPU draws best (meshoptimizer's vertex cache,
+ * then overdraw order) where built with meshoptimizer; otherwise, or for
+ * indices out of range (the parent refuses those), left as they are. */
+void jd_mesh_arrays_order(jd_mesh_arrays *m);
+
+/* Streams the record: header, positions, [normals], [uvs], indices,
+ * [material]. 0, or -1 when the pipe closed. */
+int jd_mesh_arrays_emit(const jd_mesh_arrays *m, jd_record_write_fn write, void *user);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
