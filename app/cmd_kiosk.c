@@ -34,17 +34,75 @@ static void health_line(jd_session *s, const double *times, double *sorted, long
     printf("\n");
 }
 
+static const char kiosk_summary[] =
+    "Shows the scene fullscreen (DRM/KMS by default), the light orbiting, until SIGINT or\n"
+    "SIGTERM or --frames N; then prints frame-time statistics. SIGHUP re-reads --config.\n"
+    "Touch or a mouse drag turns the object; --idle seconds later it turns back. Needs DRM\n"
+    "master: run it from a text console or a systemd service, not inside a desktop session.";
+
+/* The options in force: the defaults, then the configuration file, then the
+ * command line (which wins). 1, or 0 after saying why. */
+static int kiosk_options(jd_options *o, const char *config, int argc, char **argv, char *store, size_t cap)
+{
+    jd_options_defaults(o);
+    o->platform = "drm";
+    if (config && !jd_options_parse_file(o, JD_OPT_KIOSK, "kiosk", config, store, cap)) return 0;
+    if (jd_options_parse(o, JD_OPT_KIOSK, "kiosk", argc, argv, 2) != 1) return 0;
+    return jd_options_finish(o, "kiosk");
+}
+
+static int same_str(const char *a, const char *b) { return a == b || (a && b && !strcmp(a, b)); }
+
+/* SIGHUP: the configuration again. What can change while running changes
+ * (the scene, the material, the light, the mesh); what needs another
+ * display or another renderer set-up is said and waits for a restart. The
+ * display keeps the last frame until the new one is ready. */
+static void reload(jd_session *s, jd_options *o, jd_scene *sc, int argc, char **argv, char (*store)[65536], int *cur)
+{
+    jd_options n;
+    if (!kiosk_options(&n, o->config, argc, argv, store[!*cur], sizeof store[0])) {
+        fprintf(stderr, "jade kiosk: SIGHUP: the configuration was not changed\n");
+        return;
+    }
+    const char *later = NULL;
+    if (!same_str(n.platform, o->platform)) later = "platform";
+    else if (!same_str(n.drm_device, o->drm_device)) later = "drm-device";
+    else if (!same_str(n.connector, o->connector)) later = "connector";
+    else if (!same_str(n.display_mode, o->display_mode)) later = "display-mode";
+    else if (n.atomic != o->atomic) later = "atomic";
+    else if (n.rotation != o->rotation) later = "rotate";
+    else if (!same_str(n.profile, o->profile)) later = "profile";
+    else if (memcmp(&n.rdesc, &o->rdesc, sizeof n.rdesc)) later = "a renderer option";
+    if (later) fprintf(stderr, "jade kiosk: SIGHUP: %s changed; that takes effect at the next start\n", later);
+    /* The display stays as opened and the renderer as set up. (The new
+     * strings are kept: the old ones live in the text about to be reused.) */
+    n.atomic = o->atomic, n.rotation = o->rotation, n.rdesc = o->rdesc, n.fullscreen = o->fullscreen;
+    n.width = o->width, n.height = o->height;
+    int mesh_changed = !same_str(n.mesh, o->mesh) || memcmp(&n.load, &o->load, sizeof n.load);
+    *cur = !*cur;
+    *o = n;
+    if (mesh_changed) {
+        int r = jd_session_reload_mesh(s, o, "kiosk");
+        if (r < 0) return; /* said; the loop stops at the renderer's absence */
+    }
+    *sc = o->scene;
+    fprintf(stderr, "jade kiosk: SIGHUP: configuration re-read from %s: mesh %s, material %s, light speed %g deg/s\n",
+            o->config ? o->config : "the command line", s->mesh_path, o->material, o->light_speed);
+}
+
+static double kiosk_times[KIOSK_SAMPLES], kiosk_sorted[KIOSK_SAMPLES];
+static char kiosk_store[2][65536]; /* the configuration's text, this one and the next */
+
 int jd_cmd_kiosk(int argc, char **argv)
 {
     jd_options o;
     jd_options_defaults(&o);
     o.platform = "drm";
-    int rc = jd_options_command(&o, JD_OPT_KIOSK, "kiosk",
-                                "Shows the scene fullscreen (DRM/KMS by default), the light orbiting, until SIGINT or\n"
-                                "SIGTERM or --frames N; then prints frame-time statistics. Needs DRM master: run\n"
-                                "it from a text console or a systemd service, not inside a desktop session.",
-                                argc, argv);
+    int rc = jd_options_command(&o, JD_OPT_KIOSK, "kiosk", kiosk_summary, argc, argv);
     if (rc >= 0) return rc;
+    int cur = 0;
+    if (o.config && !kiosk_options(&o, o.config, argc, argv, kiosk_store[cur], sizeof kiosk_store[0])) return 2;
+    o.fullscreen = 1;
     jd_quit_on_signals();
     jd_session s;
     if (!jd_session_open(&s, &o, "kiosk")) {
@@ -53,32 +111,74 @@ int jd_cmd_kiosk(int argc, char **argv)
         return stopped ? 0 : 1;
     }
     jd_error err = {0};
-    double *times = jd_arena_alloc(&s.arena, sizeof(double) * KIOSK_SAMPLES, 16, "kiosk frame times", &err);
-    double *sorted = jd_arena_alloc(&s.arena, sizeof(double) * KIOSK_SAMPLES, 16, "kiosk frame times", &err);
-    if (!times || !sorted) { fprintf(stderr, "jade kiosk: %s\n", err.msg); jd_session_close(&s); return 1; }
+    double *times = kiosk_times, *sorted = kiosk_sorted;
     fprintf(stderr, "%s\n%s\n", jd_platform_describe(s.platform), jd_antialias_describe(s.renderer));
     jd_scene sc = o.scene;
-    double t_start = jd_now_ms(), t_prev = t_start, t_log = t_start;
+    double t_start = jd_now_ms(), t_prev = t_start, t_log = t_start, t_input = -1e300, t_ease = t_start;
+    /* The user's turn of the camera, eased back to the scene's own once
+     * --idle seconds pass without input. */
+    float turn_az = 0, turn_el = 0;
+    int touched = 0;
     long frames = 0, frames_logged = 0;
     rc = 0;
     while (!o.frames || frames < o.frames) {
         jd_event ev;
-        int quit = 0;
-        while (jd_platform_poll(s.platform, &ev))
+        int quit = 0, reread = 0;
+        while (jd_platform_poll(s.platform, &ev)) {
             if (ev.type == JD_EVENT_QUIT) quit = 1;
+            else if (ev.type == JD_EVENT_RELOAD) reread = 1;
+            else if (ev.type == JD_EVENT_DRAG) {
+                int w, h;
+                jd_platform_size(s.platform, &w, &h);
+                /* A drag across the whole screen turns the object half round;
+                 * on a panel mounted turned (--rotate, counter-clockwise),
+                 * the drag is turned back into the picture's directions. */
+                float per_px = 180.0f / (float)(w > h ? w : h), dx = ev.dx, dy = ev.dy;
+                if (o.rotation == 90) dx = -ev.dy, dy = ev.dx;
+                else if (o.rotation == 180) dx = -ev.dx, dy = -ev.dy;
+                else if (o.rotation == 270) dx = ev.dy, dy = -ev.dx;
+                turn_az -= dx * per_px;
+                turn_el += dy * per_px;
+                if (!touched)
+                    printf("kiosk: touched at %.1f s: the object follows, and turns back after %g s without input\n",
+                           (jd_now_ms() - t_start) / 1000.0, o.idle_s);
+                touched = 1;
+                t_input = jd_now_ms();
+            }
+        }
         if (quit) break;
+        if (reread) {
+            reload(&s, &o, &sc, argc, argv, kiosk_store, &cur);
+            if (!s.renderer) { rc = 1; break; }
+        }
+        double now = jd_now_ms(), dt = now - t_ease;
+        t_ease = now;
+        if (now - t_input > o.idle_s * 1000.0) {
+            /* Back to the idle animation, by half every 0.4 s of clock. */
+            float k = (float)exp(-dt / 577.0);
+            turn_az = fabsf(turn_az) < 0.1f ? 0 : turn_az * k; /* then exactly still */
+            turn_el = fabsf(turn_el) < 0.1f ? 0 : turn_el * k;
+            if (touched && turn_az == 0 && turn_el == 0) {
+                printf("kiosk: back in place at %.1f s, after %g s without input\n", (now - t_start) / 1000.0, o.idle_s);
+                touched = 0;
+            }
+        }
+        sc.cam_azimuth = o.scene.cam_azimuth + turn_az;
+        float el = o.scene.cam_elevation + turn_el;
+        sc.cam_elevation = el > 85 ? 85 : el < -85 ? -85 : el;
+        turn_el = sc.cam_elevation - o.scene.cam_elevation;
         /* By the clock, so the motion stays smooth when frames are dropped;
          * wrapped, so float precision holds over months. A still light
          * keeps the scene unchanged and the renderer reuses its work. */
         if (o.light_speed != 0.0f)
             sc.light_azimuth = o.scene.light_azimuth +
-                               (float)fmod((jd_now_ms() - t_start) / 1000.0 * (double)o.light_speed, 360.0);
+                               (float)fmod((now - t_start) / 1000.0 * (double)o.light_speed, 360.0);
         if (jd_renderer_frame(s.renderer, &sc, NULL, &err) || jd_platform_present(s.platform, &err)) {
             fprintf(stderr, "jade kiosk: %s\n", err.msg);
             rc = 1;
             break;
         }
-        double now = jd_now_ms();
+        now = jd_now_ms();
         times[frames % KIOSK_SAMPLES] = now - t_prev;
         t_prev = now;
         frames++;

@@ -53,11 +53,7 @@ void jd_health_sample(jd_health *h)
     if (!probes) first = now;
     unsigned a[4] = {now.texture, now.buffer, now.framebuffer, now.renderbuffer};
     unsigned b[4] = {first.texture, first.buffer, first.framebuffer, first.renderbuffer};
-    for (int k = 0; k < 4; k++) {
-        /* Past the first sample: what the probes themselves took is not new. */
-        unsigned moved = a[k] > b[k] ? a[k] - b[k] : 0;
-        h->gl_new[k] = moved > probes ? moved - probes : 0;
-    }
+    for (int k = 0; k < 4; k++) h->gl_new[k] = a[k] > b[k] ? a[k] - b[k] : 0;
     probes++;
 }
 

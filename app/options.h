@@ -38,6 +38,7 @@ typedef struct jd_options {
     float light_speed;   /* kiosk: degrees per second */
     const char *config;  /* kiosk: the configuration file */
     float idle_s;        /* kiosk: seconds without input before the camera returns */
+    int fullscreen;      /* set by the kiosk: a window platform fills the screen */
     jd_load_desc load;
     jd_renderer_desc rdesc;
     jd_scene scene;

@@ -27,6 +27,10 @@ int jd_default_asset(char *out, size_t cap)
             *slash = 0;
             snprintf(out, cap, "%s/../assets/default.drc", exe);
             if (access(out, R_OK) == 0) return 1;
+            /* Installed: PREFIX/bin/jade finds PREFIX/share/jade, wherever
+             * the prefix was moved to. */
+            snprintf(out, cap, "%s/../share/jade/default.drc", exe);
+            if (access(out, R_OK) == 0) return 1;
             snprintf(out, cap, "%s/assets/default.drc", exe);
             if (access(out, R_OK) == 0) return 1;
         }
@@ -152,7 +156,7 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
     if (!mesh_path(s, o, cmd)) return 0;
     jd_platform_desc pd = {.kind = o->platform ? o->platform : "headless", .width = o->width, .height = o->height,
                            .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode,
-                           .single_sample = o->rdesc.antialias == JD_AA_OFF,
+                           .single_sample = o->rdesc.antialias == JD_AA_OFF, .fullscreen = o->fullscreen,
                            .atomic = o->atomic};
     /* No display, no point decoding: say so at once (or, with
      * --wait-display, wait for one: systemd may start the kiosk before the

@@ -78,21 +78,23 @@ jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)
     return JD_OK;
 }
 
+static unsigned count_live(void (*gen)(GLsizei, GLuint *), void (*del)(GLsizei, const GLuint *),
+                           GLboolean (*is)(GLuint))
+{
+    GLuint next = 0;
+    gen(1, &next);
+    del(1, &next);
+    unsigned live = 0, top = next < 65536 ? next : 65536;
+    for (GLuint k = 1; k < top; k++) live += is(k) == GL_TRUE;
+    return live;
+}
+
 void jd_gl_probe_names(jd_gl_names *out)
 {
-    GLuint n;
-    glGenTextures(1, &n);
-    glDeleteTextures(1, &n);
-    out->texture = n;
-    glGenBuffers(1, &n);
-    glDeleteBuffers(1, &n);
-    out->buffer = n;
-    glGenFramebuffers(1, &n);
-    glDeleteFramebuffers(1, &n);
-    out->framebuffer = n;
-    glGenRenderbuffers(1, &n);
-    glDeleteRenderbuffers(1, &n);
-    out->renderbuffer = n;
+    out->texture = count_live(glGenTextures, glDeleteTextures, glIsTexture);
+    out->buffer = count_live(glGenBuffers, glDeleteBuffers, glIsBuffer);
+    out->framebuffer = count_live(glGenFramebuffers, glDeleteFramebuffers, glIsFramebuffer);
+    out->renderbuffer = count_live(glGenRenderbuffers, glDeleteRenderbuffers, glIsRenderbuffer);
 }
 
 /* (1 + v) * k * 0.001 - 1 with v = 1e-4 from a varying and k = 1000 from a

@@ -36,11 +36,12 @@ int jd_gl_has_extension(const char *name);
  * target and reads one pixel back: for start-up and tests, never a frame. */
 int jd_gl_mediump_is_fp16(void);
 
-/* The names the current context would give a new texture, buffer,
- * framebuffer and renderbuffer (each generated and deleted at once). GL
- * hands out the lowest free name or one past the highest in use, so these
- * stay flat over a long run unless GL objects leak: a leak detector that
- * needs no driver support. Costs four create/delete pairs; call it rarely. */
+/* How many textures, buffers, framebuffers and renderbuffers the current
+ * context holds: every name below the one a new object would get, asked
+ * with glIsTexture and the like (drivers need not reuse freed names, so
+ * the next name alone climbs without a leak). Flat over a long run unless
+ * GL objects leak: a leak detector that needs no driver support. Costs a
+ * few thousand glIs* calls; call it rarely (health lines), never in a frame. */
 typedef struct jd_gl_names { unsigned texture, buffer, framebuffer, renderbuffer; } jd_gl_names;
 void jd_gl_probe_names(jd_gl_names *out);
 

@@ -3,6 +3,7 @@
  * vblank events; the original CRTC is put back on close. */
 #include "backend.h"
 #include "drm_select.h"
+#include "input.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -28,6 +29,7 @@
 
 typedef struct drm_platform {
     int fd;
+    jd_input *input; /* touch screen and mouse, or NULL */
     char device[64], connector_name[32];
     uint32_t connector_id, crtc_id;
     drmModeModeInfo mode;
@@ -354,6 +356,14 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
              p->connector_name, p->mode.hdisplay, p->mode.vdisplay, p->mode.vrefresh,
              p->format == GBM_FORMAT_XRGB8888 ? "XRGB8888" : "ARGB8888", major, minor,
              eglQueryString(p->edpy, EGL_VENDOR));
+    char why[96] = "";
+    p->input = jd_input_open(p->mode.hdisplay, p->mode.vdisplay, why, sizeof why);
+    size_t at = strlen(p->describe);
+    if (p->input)
+        snprintf(p->describe + at, sizeof p->describe - at, "; input: %d touch or pointer device(s) on seat0 (libinput)",
+                 jd_input_devices(p->input));
+    else
+        snprintf(p->describe + at, sizeof p->describe - at, "; no touch or mouse input (%s)", why);
     *out = p;
     return JD_OK;
 }
@@ -449,9 +459,8 @@ static unsigned drm_framebuffer(const void *impl)
 
 static int drm_poll(void *impl, jd_event *ev)
 {
-    (void)impl;
-    (void)ev;
-    return 0; /* a kiosk has no input; signals arrive through jd_quit_requested */
+    /* Signals arrive through jd_quit_requested; touch and mouse here. */
+    return jd_input_poll(((drm_platform *)impl)->input, ev);
 }
 
 static void drm_stats(const void *impl, jd_present_stats *st)
@@ -471,6 +480,8 @@ static const char *drm_describe(const void *impl) { return ((const drm_platform 
 static void drm_close(void *impl)
 {
     drm_platform *p = impl;
+    jd_input_close(p->input);
+    p->input = NULL;
     if (p->flip_pending) { /* restoring under a pending flip fails with EBUSY */
         jd_error e;
         wait_flip(p, &e);

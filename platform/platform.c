@@ -13,6 +13,7 @@ struct jd_platform {
     const jd_platform_ops *ops;
     void *impl;
     int quit_reported; /* a signal's QUIT is one event, not one on every poll */
+    int reload_seen;   /* SIGHUPs already reported */
 };
 
 static struct jd_platform g_platform; /* one display per process */
@@ -53,6 +54,7 @@ jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_e
     jd_result r = ops->open(desc, &g_platform.impl, err);
     if (r) return r;
     g_platform.ops = ops;
+    g_platform.reload_seen = jd_reload_count();
     *out = &g_platform;
     return JD_OK;
 }
@@ -68,6 +70,12 @@ int jd_platform_poll(jd_platform *p, jd_event *ev)
     if (jd_quit_requested() && !p->quit_reported) {
         p->quit_reported = 1;
         ev->type = JD_EVENT_QUIT;
+        return 1;
+    }
+    if (jd_reload_count() != p->reload_seen) {
+        p->reload_seen = jd_reload_count();
+        memset(ev, 0, sizeof *ev);
+        ev->type = JD_EVENT_RELOAD;
         return 1;
     }
     return p->ops->poll(p->impl, ev);
@@ -121,8 +129,12 @@ jd_result jd_read_rgba_flipped(unsigned fbo, int w, int h, uint8_t *dst, jd_erro
     return JD_OK;
 }
 
-static volatile sig_atomic_t quit_flag;
-static void on_signal(int sig) { (void)sig; quit_flag = 1; }
+static volatile sig_atomic_t quit_flag, reload_count;
+static void on_signal(int sig)
+{
+    if (sig == SIGHUP) reload_count++;
+    else quit_flag = 1;
+}
 
 void jd_quit_on_signals(void)
 {
@@ -136,6 +148,8 @@ void jd_quit_on_signals(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
 }
 
 int jd_quit_requested(void) { return quit_flag; }
+int jd_reload_count(void) { return reload_count; }

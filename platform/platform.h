@@ -16,6 +16,7 @@ typedef struct jd_platform jd_platform;
 typedef struct jd_platform_desc {
     const char *kind;         /* "headless" [default], "x11" or "drm" */
     int width, height;        /* [512 x 512]; drm: taken from the display mode */
+    int fullscreen;           /* x11: the whole screen (EWMH), no pointer shown */
     int single_sample;        /* no multisampling (else 4x where the EGL config or, headless,
                                  EXT_multisampled_render_to_texture has it) */
     /* drm only */
@@ -31,7 +32,8 @@ typedef enum jd_event_type {
     JD_EVENT_RESIZE, /* w, h */
     JD_EVENT_KEY,    /* key: an ASCII character, or 27 for Escape */
     JD_EVENT_DRAG,   /* dx, dy in pixels, primary button held */
-    JD_EVENT_SCROLL  /* dy: +1 away from the user, -1 towards */
+    JD_EVENT_SCROLL, /* dy: +1 away from the user, -1 towards */
+    JD_EVENT_RELOAD  /* SIGHUP: re-read the configuration */
 } jd_event_type;
 
 typedef struct jd_event {
@@ -69,9 +71,11 @@ const char *jd_platform_describe(const jd_platform *p);
 void jd_platform_close(jd_platform *p);
 
 /* SIGINT and SIGTERM set a flag that jd_platform_poll reports as
- * JD_EVENT_QUIT, so a kiosk always gets to restore the display. */
+ * JD_EVENT_QUIT, so a kiosk always gets to restore the display; each
+ * SIGHUP is reported once as JD_EVENT_RELOAD. */
 void jd_quit_on_signals(void);
 int jd_quit_requested(void);
+int jd_reload_count(void); /* SIGHUPs received */
 
 #ifdef __cplusplus
 }

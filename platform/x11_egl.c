@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include <X11/Xlib.h>
+#include <X11/Xatom.h>
 #include <X11/Xutil.h>
 #include <X11/keysym.h>
 #include <EGL/egl.h>
@@ -25,8 +26,8 @@ typedef struct x11_platform {
     EGLContext ctx;
     EGLSurface surf;
     int w, h, screen_w, screen_h;
-    int dragging, last_x, last_y;
-    char describe[160];
+    int dragging, last_x, last_y, fullscreen;
+    char describe[192];
 } x11_platform;
 
 static x11_platform g_x11;
@@ -69,6 +70,11 @@ static jd_result x11_open(const jd_platform_desc *desc, void **out, jd_error *er
     p->screen_h = DisplayHeight(p->dpy, scr);
     p->w = desc->width > 0 ? desc->width : 512;
     p->h = desc->height > 0 ? desc->height : 512;
+    p->fullscreen = desc->fullscreen;
+    if (p->fullscreen) { /* the whole screen, whatever size was asked */
+        p->w = p->screen_w;
+        p->h = p->screen_h;
+    }
     if (p->w > p->screen_w) p->screen_w = p->w;
     if (p->h > p->screen_h) p->screen_h = p->h;
 
@@ -112,6 +118,22 @@ static jd_result x11_open(const jd_platform_desc *desc, void **out, jd_error *er
     XStoreName(p->dpy, p->win, "jade");
     p->wm_delete = XInternAtom(p->dpy, "WM_DELETE_WINDOW", False);
     XSetWMProtocols(p->dpy, p->win, &p->wm_delete, 1);
+    if (p->fullscreen) {
+        /* EWMH: a window manager shows it full screen, above panels; with
+         * none (a bare X server, the usual kiosk), it already covers the
+         * screen from 0,0. Set before mapping, as the spec asks. */
+        Atom state = XInternAtom(p->dpy, "_NET_WM_STATE", False);
+        Atom full = XInternAtom(p->dpy, "_NET_WM_STATE_FULLSCREEN", False);
+        XChangeProperty(p->dpy, p->win, state, XA_ATOM, 32, PropModeReplace, (unsigned char *)&full, 1);
+        /* No pointer over the picture: an empty 1x1 cursor. */
+        static char empty[1] = {0};
+        Pixmap blank = XCreateBitmapFromData(p->dpy, p->win, empty, 1, 1);
+        XColor black = {0};
+        Cursor none = XCreatePixmapCursor(p->dpy, blank, blank, &black, &black, 0, 0);
+        XDefineCursor(p->dpy, p->win, none);
+        XFreeCursor(p->dpy, none);
+        XFreePixmap(p->dpy, blank);
+    }
     XMapWindow(p->dpy, p->win);
 
     /* An empty list, never NULL: some drivers read it unchecked. */
@@ -125,8 +147,8 @@ static jd_result x11_open(const jd_platform_desc *desc, void **out, jd_error *er
                        eglGetError());
     }
     eglSwapInterval(p->edpy, 1);
-    snprintf(p->describe, sizeof p->describe, "EGL %d.%d on X11 display %s (%s)", major, minor, name,
-             eglQueryString(p->edpy, EGL_VENDOR));
+    snprintf(p->describe, sizeof p->describe, "EGL %d.%d on X11 display %s (%s), window %dx%d%s", major, minor, name,
+             eglQueryString(p->edpy, EGL_VENDOR), p->w, p->h, p->fullscreen ? ", full screen" : "");
     *out = p;
     return JD_OK;
 }

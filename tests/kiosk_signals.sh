@@ -3,7 +3,7 @@
 # (Ctrl-C) end it within a frame or two, with its statistics line and exit
 # status 0, on the headless platform and on X11 (Xvfb, started here when it
 # is installed). A kiosk that keeps running is killed after 10 s and fails.
-jade=$1 out=$2
+jade=$1 out=$2 drag=${3:-none}
 pass=0 fail=0
 run() { # run PLATFORM SIGNAL[+SIGNAL: a second one right after] [env...]
     plat=$1 sig=${2%+*} again=
@@ -53,12 +53,77 @@ if [ "$rc" -eq 0 ] && [ "$(grep -c ': waiting for a display' "$out/kiosk_wait.tx
 else
     fail=$((fail + 1)); echo "FAIL --wait-display: exit $rc"; cat "$out/kiosk_wait.txt"
 fi
+# SIGHUP re-reads --config: a new material and mesh take effect, a broken
+# file leaves the kiosk as it was, a display option waits for a restart;
+# the live GL objects stay as many after 6 mesh changes as before.
+conf="$out/kiosk_hup.conf"
+printf '# test\nplatform = headless\nsize = 96x72\nmaterial = skin1\nlog-every = 0.3\n' > "$conf"
+"$jade" kiosk --config "$conf" > "$out/kiosk_hup.out" 2> "$out/kiosk_hup.err" &
+pid=$!
+i=0
+while [ $i -lt 100 ] && ! grep -q "anti-aliasing" "$out/kiosk_hup.err"; do sleep 0.1; i=$((i + 1)); done
+hup() { printf "$1" > "$conf"; kill -HUP "$pid"; i=0; n=$2
+        while [ $i -lt 100 ] && [ "$(grep -c SIGHUP "$out/kiosk_hup.err")" -lt "$n" ]; do sleep 0.1; i=$((i + 1)); done; }
+base='platform = headless\nsize = 96x72\nlog-every = 0.3\n'
+hup "${base}material = ketchup\n" 1
+hup "${base}material = ketchup\nbogus = 1\n" 3
+hup "${base}material = ketchup\nconnector = HDMI-A-9\n" 5
+k=6
+for m in tet cube tet cube tet cube; do
+    if [ $m = tet ]; then printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' > "$out/kiosk_hup.obj"
+    else printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 5\nf 2 5 4\nf 3 4 5\n' > "$out/kiosk_hup.obj"; fi
+    hup "${base}mesh = $out/kiosk_hup_$m.obj\n" $k
+    cp "$out/kiosk_hup.obj" "$out/kiosk_hup_$m.obj"
+    hup "${base}mesh = $out/kiosk_hup_$m.obj\n" $((k + 1))
+    k=$((k + 2))
+done
+sleep 1
+kill -TERM "$pid"
+wait "$pid"
+rc=$?
+e="$out/kiosk_hup.err"
+check() { if grep -q "$2" "$e"; then pass=$((pass + 1)); echo "ok   SIGHUP: $1: $(grep -m1 "$2" "$e")"
+          else fail=$((fail + 1)); echo "FAIL SIGHUP: $1"; cat "$e"; fi; }
+check "the new material" "re-read from .*material ketchup"
+check "a broken file is named and changes nothing" "line 5: unknown option '--bogus'"
+check "a display option waits for a restart" "connector changed; that takes effect at the next start"
+check "a new mesh is drawn" "mesh $out/kiosk_hup_cube.obj"
+gl_first=$(grep -m1 "new GL objects" "$out/kiosk_hup.out" | sed 's/.*new GL objects //')
+gl_last=$(grep "new GL objects" "$out/kiosk_hup.out" | tail -1 | sed 's/.*new GL objects //')
+if [ "$rc" -eq 0 ] && [ "$gl_last" = "0/0/0/0" ]; then
+    pass=$((pass + 1)); echo "ok   SIGHUP: after $(grep -c 're-read' "$e") re-reads, exit 0, live GL objects beyond the first sample: $gl_first -> $gl_last"
+else
+    fail=$((fail + 1)); echo "FAIL SIGHUP: exit $rc, GL objects $gl_first -> $gl_last"; tail -3 "$out/kiosk_hup.out"
+fi
 if command -v Xvfb >/dev/null; then
     xvfb_first=95
     . "$(dirname "$0")/xvfb.sh"
     d=$DISPLAY_NUM
     run x11 TERM DISPLAY=":$d"
     run x11 INT DISPLAY=":$d"
+    # Full screen, no pointer, and a drag turns the object until --idle
+    # seconds without input bring it back.
+    if [ "$drag" != none ]; then
+        DISPLAY=":$d" "$jade" kiosk --platform x11 --idle 1 --log-every 0.5 > "$out/kiosk_drag.out" 2> "$out/kiosk_drag.err" &
+        pid=$!
+        i=0
+        while [ $i -lt 100 ] && ! grep -q "anti-aliasing" "$out/kiosk_drag.err"; do sleep 0.1; i=$((i + 1)); done
+        sleep 0.3
+        DISPLAY=":$d" "$drag" jade 200 -60 > "$out/kiosk_drag.send" 2>&1
+        i=0
+        while [ $i -lt 150 ] && ! grep -q "back in place" "$out/kiosk_drag.out"; do sleep 0.1; i=$((i + 1)); done
+        kill -TERM "$pid"
+        wait "$pid"
+        rc=$?
+        if grep -q "window 640x480, full screen" "$out/kiosk_drag.err"; then
+            pass=$((pass + 1)); echo "ok   x11 kiosk fills the 640x480 screen: $(grep -o 'window .*' "$out/kiosk_drag.err")"
+        else fail=$((fail + 1)); echo "FAIL x11 kiosk is not full screen: $(head -1 "$out/kiosk_drag.err")"; fi
+        if [ "$rc" -eq 0 ] && grep -q "^kiosk: touched at" "$out/kiosk_drag.out" && grep -q "^kiosk: back in place" "$out/kiosk_drag.out"; then
+            pass=$((pass + 1)); echo "ok   x11 drag: $(grep '^kiosk: touched' "$out/kiosk_drag.out"); $(grep '^kiosk: back in place' "$out/kiosk_drag.out")"
+        else
+            fail=$((fail + 1)); echo "FAIL x11 drag (exit $rc): $(cat "$out/kiosk_drag.send")"; cat "$out/kiosk_drag.out" "$out/kiosk_drag.err"
+        fi
+    fi
 else
     echo "Xvfb missing: the X11 kiosk is not tried"
 fi

@@ -15,7 +15,7 @@ here=$(dirname "$0")
 . "$here/apt-source.sh"
 required="build-essential cmake pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libdraco-dev draco
           libstb-dev"
-optional="libgbm-dev libdrm-dev libx11-dev libmeshoptimizer-dev libcjson-dev glslang-tools xvfb python3 clang libclang-rt-14-dev
+optional="libgbm-dev libdrm-dev libinput-dev libudev-dev libx11-dev libmeshoptimizer-dev libcjson-dev glslang-tools xvfb python3 clang libclang-rt-14-dev
           dpkg-dev meson ninja-build bison flex python3-mako libexpat1-dev zlib1g-dev"
 # shellcheck disable=SC2086
 missing_req=$("$here/missing-packages.sh" $required)
