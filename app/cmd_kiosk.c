@@ -196,7 +196,7 @@ int jd_cmd_kiosk(int argc, char **argv)
         jd_platform_present_stats(s.platform, &ps);
         printf("kiosk: %ld frames in %.1f s, frame time median %.2f ms, p95 %.2f ms, missed vblanks %u",
                frames, (t_prev - t_start) / 1000.0, sorted[n / 2], sorted[(n * 95) / 100], ps.missed_vblanks);
-        if (ps.refresh_hz > 0) printf(" (display %.0f Hz)", ps.refresh_hz);
+        if (ps.refresh_hz > 0) printf(" (display %.0f Hz), page flips %u", ps.refresh_hz, ps.flips);
         printf("\n");
     }
     jd_session_close(&s);

@@ -47,7 +47,7 @@ typedef struct drm_platform {
     uint32_t plane_id, mode_blob;
     uint32_t p_conn_crtc, p_crtc_mode, p_crtc_active, p_fb, p_plane_crtc, p_src_x, p_src_y, p_src_w, p_src_h,
         p_crtc_x, p_crtc_y, p_crtc_w, p_crtc_h;
-    unsigned frames, missed, last_seq;
+    unsigned frames, missed, last_seq, flips;
     char describe[512];
 } drm_platform;
 
@@ -397,6 +397,7 @@ static void on_flip(int fd, unsigned seq, unsigned sec, unsigned usec, void *dat
     if (p->last_seq && seq > p->last_seq + 1) p->missed += seq - p->last_seq - 1;
     p->last_seq = seq;
     p->flip_pending = 0;
+    p->flips++;
 }
 
 static jd_result wait_flip(drm_platform *p, jd_error *err)
@@ -468,6 +469,7 @@ static void drm_stats(const void *impl, jd_present_stats *st)
     const drm_platform *p = impl;
     st->frames = p->frames;
     st->missed_vblanks = p->missed;
+    st->flips = p->flips;
     st->refresh_hz = p->mode.vrefresh;
 }
 

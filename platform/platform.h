@@ -44,6 +44,7 @@ typedef struct jd_event {
 
 typedef struct jd_present_stats {
     unsigned frames, missed_vblanks; /* missed: flips that took more than one refresh */
+    unsigned flips;                  /* page flips the display confirmed (drm: frames - 1, the first a modeset) */
     double refresh_hz;
 } jd_present_stats;
 

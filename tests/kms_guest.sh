@@ -1,0 +1,102 @@
+#!/bin/sh
+# Runs inside tools/kms-test.sh's virtual machine, as root, in a chroot of
+# the host's files (read-only): jade's kiosk on the vkms kernel driver.
+# kms_guest.sh JADE VKMS.ko UINPUT_TOUCH OUT_DIR; results in OUT_DIR/results.
+jade=$1 vkms=$2 touch=$3 out=$4
+res=$out/results
+: > "$res"
+pass=0 fail=0
+ok() { pass=$((pass + 1)); echo "ok   $1" | tee -a "$res"; }
+bad() { fail=$((fail + 1)); echo "FAIL $1" | tee -a "$res"; }
+modprobe drm_kms_helper && modprobe drm_shmem_helper && insmod "$vkms" enable_writeback=1 ||
+    { bad "vkms does not load"; exit 1; }
+modprobe uinput 2>/dev/null; modprobe evdev 2>/dev/null
+mount -t debugfs debugfs /sys/kernel/debug 2>/dev/null
+i=0
+while [ ! -e /dev/dri/card0 ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+[ -e /dev/dri/card0 ] && ok "vkms loaded: $(cat /sys/class/drm/card0-*/status 2>/dev/null | tr '\n' ' ')(/dev/dri/card0)" ||
+    { bad "no /dev/dri/card0"; exit 1; }
+state=/sys/kernel/debug/dri/0/state
+crtc_state() { sed -n '/^crtc\[/,/^connector\[/p' "$state" | grep -v "^connector"; }
+crtc_state > "$out/crtc_before"
+# Under TCG a frame takes seconds and a decode may pass the usual 1.5 s.
+mode="--display-mode 640x480 --decode-timeout-ms 60000"
+# kiosk NAME ARGS...: runs the kiosk to its end; its output in $out/NAME.
+kiosk() {
+    name=$1
+    shift
+    start=$(date +%s)
+    "$jade" kiosk --drm-device /dev/dri/card0 $mode "$@" > "$out/$name" 2>&1
+    rc=$?
+    echo "  ($name: exit $rc after $(( $(date +%s) - start )) s)" >> "$res"
+    return $rc
+}
+restored() {
+    crtc_state > "$out/crtc_after"
+    if cmp -s "$out/crtc_before" "$out/crtc_after"; then ok "$1: the CRTC is as it was before ($(grep -m1 'enable=' "$out/crtc_after" | tr -d '\t'))"
+    else bad "$1: the CRTC is not restored: $(diff "$out/crtc_before" "$out/crtc_after" | head -5 | tr '\n' ' ')"; fi
+}
+flips() { # NAME FRAMES: every frame after the modeset was a page flip the kernel confirmed
+    line=$(grep "^kiosk: [0-9]* frames" "$out/$1")
+    f=$(echo "$line" | sed -n 's/^kiosk: \([0-9]*\) frames.*/\1/p')
+    p=$(echo "$line" | sed -n 's/.*page flips \([0-9]*\).*/\1/p')
+    if [ "$f" = "$2" ] && [ "$p" = "$(( $2 - 1 ))" ]; then ok "$1: $f frames drawn, $p page flips confirmed: $line"
+    else bad "$1: frames $f, flips $p (want $2 and $(( $2 - 1 ))): $(cat "$out/$1")"; fi
+}
+if kiosk legacy --frames 6; then flips legacy 6; else bad "legacy: $(cat "$out/legacy")"; fi
+restored legacy
+if kiosk atomic --frames 6 --atomic --mode none; then flips atomic 6; else bad "atomic: $(cat "$out/atomic")"; fi
+restored atomic
+# What was chosen is what was asked.
+if kiosk choose --frames 2 --mode none --connector Virtual-1 --display-mode 800x600 && grep -q "Virtual-1 800x600" "$out/choose"; then
+    ok "--connector Virtual-1 --display-mode 800x600: $(grep -o 'DRM/KMS [^,]*' "$out/choose")"
+else bad "connector and mode choice: $(cat "$out/choose")"; fi
+# The rest need no translucency: the cheapest mode keeps the guest quick.
+mode="--display-mode 640x480 --decode-timeout-ms 60000 --mode none"
+if kiosk rotate --frames 3 --rotate 90; then ok "--rotate 90 runs: $(grep '^kiosk:' "$out/rotate")"; else bad "--rotate 90: $(cat "$out/rotate")"; fi
+if kiosk nomode --frames 1 --display-mode 123x45 2>/dev/null; then bad "a mode the display lacks was accepted"
+else ok "a mode the display lacks is refused: $(head -1 "$out/nomode")"; fi
+# SIGTERM mid-run, the display given back; a second kiosk meanwhile is refused.
+"$jade" kiosk --drm-device /dev/dri/card0 $mode > "$out/term" 2>&1 &
+pid=$!
+i=0
+while [ $i -lt 600 ] && ! grep -q "anti-aliasing" "$out/term"; do sleep 0.1; i=$((i + 1)); done
+sleep 4
+if "$jade" kiosk --drm-device /dev/dri/card0 $mode --frames 1 > "$out/second" 2>&1; then bad "a second kiosk took the display"
+elif grep -q "held by jade (pid $pid)" "$out/second"; then ok "a second kiosk is refused, the holder named: $(cat "$out/second" | head -1)"
+else bad "second kiosk: $(cat "$out/second")"; fi
+kill -TERM "$pid"
+sent=$(date +%s%N)
+wait "$pid"
+rc=$?
+ms=$(( ($(date +%s%N) - sent) / 1000000 ))
+if [ "$rc" -eq 0 ] && grep -q "^kiosk: [0-9]* frames" "$out/term"; then ok "SIGTERM mid-run: exit 0 after $ms ms: $(grep '^kiosk: [0-9]* frames' "$out/term")"
+else bad "SIGTERM: exit $rc: $(cat "$out/term")"; fi
+restored SIGTERM
+# A touch screen: udev tags it, libinput finds it, a swipe turns the object.
+if [ -e /dev/uinput ] && [ -x /lib/systemd/systemd-udevd ]; then
+    /lib/systemd/systemd-udevd --daemon 2>/dev/null
+    "$touch" 25000 > "$out/touch_dev" 2>&1 &
+    tpid=$!
+    sleep 1
+    udevadm trigger --subsystem-match=input --action=add 2>/dev/null
+    udevadm settle -t 10 2>/dev/null
+    "$jade" kiosk --drm-device /dev/dri/card0 $mode --idle 2 > "$out/touch" 2>&1 &
+    pid=$!
+    i=0
+    while [ $i -lt 500 ] && ! grep -q "touched at" "$out/touch"; do sleep 0.1; i=$((i + 1)); done
+    i=0
+    while [ $i -lt 600 ] && ! grep -q "back in place" "$out/touch"; do sleep 0.1; i=$((i + 1)); done
+    kill -TERM "$pid"
+    wait "$pid"
+    kill "$tpid" 2>/dev/null
+    if grep -q "input: 1 touch or pointer device" "$out/touch"; then ok "libinput finds the touch screen: $(grep -o 'input: [^;]*' "$out/touch")"
+    else bad "touch screen not found: $(head -3 "$out/touch")"; fi
+    if grep -q "^kiosk: touched at" "$out/touch" && grep -q "^kiosk: back in place" "$out/touch"; then
+        ok "a swipe turns the object and it turns back: $(grep '^kiosk: touched' "$out/touch"); $(grep '^kiosk: back' "$out/touch")"
+    else bad "swipe: $(cat "$out/touch" "$out/touch_dev")"; fi
+    restored touch
+else
+    echo "no /dev/uinput or systemd-udevd: the touch screen is not tried" | tee -a "$res"
+fi
+echo "kms guest: $pass passed, $fail failed" | tee -a "$res"

@@ -1,0 +1,98 @@
+#!/bin/sh
+# jade's kiosk on a real kernel KMS driver: tools/kms-test.sh [JADE]
+#
+# Boots Debian's own kernel in qemu (TCG: no KVM needed) with a busybox
+# initramfs made here, the host's files shared read-only over 9p, and runs
+# tests/kms_guest.sh in a chroot of them: the vkms virtual display driver
+# (built here out of tree from linux-source, which Debian's kernel lacks),
+# Mesa's software rendering through GBM, a touch screen made with uinput.
+# Needs root to install what is missing (qemu-system-x86, linux-image-amd64,
+# linux-headers-amd64, linux-source-6.1, busybox-static, systemd); exits 77
+# with the reason where they cannot be had. The module, the kernel and the
+# initramfs are kept in build-kms/ for the next run.
+set -eu
+here=$(cd "$(dirname "$0")/.." && pwd)
+jade=$(readlink -f "${1:-$here/build/jade}")
+work=${JADE_KMS_WORK:-$here/build-kms}
+mkdir -p "$work"
+work=$(cd "$work" && pwd)
+[ -x "$jade" ] || { echo "kms-test: $jade is not built"; exit 1; }
+[ "$(uname -m)" = x86_64 ] || { echo "SKIP: kms-test runs on x86_64 hosts"; exit 77; }
+. "$here/tools/apt-source.sh"
+pkgs="qemu-system-x86 linux-image-amd64 linux-headers-amd64 linux-source-6.1 busybox-static systemd udev make gcc bc
+      libelf-dev flex bison xz-utils cpio kmod"
+missing=$("$here/tools/missing-packages.sh" $pkgs)
+if [ -n "$missing" ]; then
+    if [ "$(id -u)" -ne 0 ]; then echo "SKIP: kms-test needs:$missing (run as root to install them)"; exit 77; fi
+    export DEBIAN_FRONTEND=noninteractive
+    jd_apt_update "$(dpkg --print-architecture)"
+    # shellcheck disable=SC2086
+    if ! jd_apt_install "--no-install-recommends" $missing >/dev/null; then
+        echo "SKIP: kms-test: the package source failed for$missing: $(jd_apt_last_error)"
+        exit 77
+    fi
+fi
+[ "$(id -u)" -eq 0 ] || { echo "SKIP: kms-test needs root (9p sharing of / and the guest's chroot)"; exit 77; }
+# The newest Debian kernel with headers.
+kver=""
+for v in $(ls /boot | sed -n 's/^vmlinuz-//p' | sort -V); do
+    [ -d "/usr/src/linux-headers-$v" ] && [ -d "/lib/modules/$v" ] && kver=$v
+done
+[ -n "$kver" ] || { echo "SKIP: no /boot/vmlinuz-* with its linux-headers"; exit 77; }
+# vkms, out of tree, against that kernel.
+if [ ! -f "$work/vkms-$kver.ko" ]; then
+    src=$(ls /usr/src/linux-source-*.tar.xz | sort -V | tail -1)
+    rm -rf "$work/vkms-src"
+    mkdir -p "$work/vkms-src"
+    tar -xJf "$src" -C "$work/vkms-src" --strip-components=5 --wildcards '*/drivers/gpu/drm/vkms/*'
+    make -C "/usr/src/linux-headers-$kver" M="$work/vkms-src" CONFIG_DRM_VKMS=m modules > "$work/vkms-build.log" 2>&1 ||
+        { echo "kms-test: vkms does not build against $kver: $(tail -3 "$work/vkms-build.log")"; exit 1; }
+    cp "$work/vkms-src/vkms.ko" "$work/vkms-$kver.ko"
+fi
+cc -O2 -Wall -Wextra "$here/tests/uinput_touch.c" -o "$work/uinput_touch"
+# The initramfs: busybox, the virtio and 9p modules in load order, and an
+# init that mounts the host, prepares a chroot and runs the guest's tests.
+ird=$work/initrd
+rm -rf "$ird"
+mkdir -p "$ird/bin" "$ird/mod" "$ird/proc" "$ird/sys" "$ird/dev" "$ird/host"
+cp /bin/busybox "$ird/bin/"
+order=$(for m in virtio_pci 9pnet_virtio 9p; do modprobe -S "$kver" --show-depends "$m"; done |
+        awk '$1 == "insmod" && !seen[$2]++ { print $2 }')
+for f in $order; do cp "$f" "$ird/mod/"; done
+cat > "$ird/init" <<EOI
+#!/bin/busybox sh
+/bin/busybox --install -s /bin
+mount -t proc proc /proc
+mount -t sysfs sys /sys
+mount -t devtmpfs dev /dev
+for f in $(for f in $order; do printf '%s ' "$(basename "$f")"; done); do insmod /mod/\$f; done
+mount -t 9p -o trans=virtio,version=9p2000.L,ro,msize=262144 host /host || echo "GUEST: the host's files cannot be mounted"
+for d in proc sys dev; do mount --bind /\$d /host/\$d; done
+mount -t tmpfs tmp /host/tmp
+mount -t tmpfs run /host/run
+mkdir -p /host/tmp/out
+mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 out /host/tmp/out
+echo "GUEST: up in \$(cut -d' ' -f1 /proc/uptime) s"
+chroot /host /bin/sh "$here/tests/kms_guest.sh" "$jade" "$work/vkms-$kver.ko" "$work/uinput_touch" /tmp/out
+sync
+poweroff -f
+EOI
+chmod +x "$ird/init"
+(cd "$ird" && find . | cpio -o -H newc 2>/dev/null | gzip -1) > "$work/initrd.gz"
+out=$work/out
+rm -rf "$out"
+mkdir -p "$out"
+echo "kms-test: kernel $kver, vkms built here, $(basename "$jade") from $(dirname "$jade")"
+start=$(date +%s)
+timeout 1200 qemu-system-x86_64 -machine q35 -cpu qemu64 -smp 2 -m 2048 -nographic -no-reboot \
+    -kernel "/boot/vmlinuz-$kver" -initrd "$work/initrd.gz" -append "console=ttyS0 panic=-1 quiet" \
+    -virtfs local,path=/,mount_tag=host,security_model=none,readonly=on,multidevs=remap \
+    -virtfs local,path="$out",mount_tag=out,security_model=none > "$work/console.log" 2>&1 || true
+echo "kms-test: the guest ran $(( $(date +%s) - start )) s"
+if [ ! -s "$out/results" ]; then
+    echo "kms-test: the guest wrote no results; its console:"
+    tail -30 "$work/console.log"
+    exit 1
+fi
+cat "$out/results"
+grep -q "^kms guest: [0-9]* passed, 0 failed" "$out/results"
