@@ -5,11 +5,7 @@
 # the run's own input. Afterwards no output is truncated, no input changed,
 # no temporary file left, and each refusal is one line with a non-zero exit.
 jade=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); echo "ok   $1"; }
-bad() { fail=$((fail + 1)); echo "FAIL $1"; }
+. "$(dirname "$0")/harness.sh"
 check() { if eval "$2"; then ok "$1"; else bad "$1"; fi; }
 # refused NAME PATTERN -- command: exit 1 within 10 s, one line naming the problem
 refused() {
@@ -107,5 +103,4 @@ refused "mesh is a folder" "" -- "$jade" render --mesh "$tmp/folder" --out "$tmp
 refused "picture is a device" "not a regular file" -- "$jade" metric /dev/zero "$tmp/ref.png"
 refused "picture is a folder" "not a regular file" -- "$jade" metric "$tmp/folder" "$tmp/ref.png"
 
-echo "faults: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish faults

@@ -13,11 +13,7 @@
 # and OBJ) render (said when absent), and `jade convert` turns each format
 # into a Draco file that renders the same.
 jade=$1 shared=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); echo "ok   $1"; }
-bad() { fail=$((fail + 1)); echo "FAIL $1"; }
+. "$(dirname "$0")/harness.sh"
 render() { "$jade" render --mesh "$1" --size 96x96 --out "$2" >"$tmp/out" 2>&1; }
 printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' > "$tmp/tet.ply"
 printf '# a tetrahedron\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' > "$tmp/tet.obj"
@@ -148,5 +144,4 @@ if [ -d "$shared/testdata/meshes" ]; then
 else
     echo "$shared/testdata/meshes is absent: the public OBJ meshes are not tried"
 fi
-echo "formats: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish formats

@@ -6,11 +6,7 @@
 # --distance and --fit override it; 1920x1080 and 3840x2160 render with no
 # budget flag.
 jade=$1 imgcmp=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); echo "ok   $1"; }
-bad() { fail=$((fail + 1)); echo "FAIL $1"; }
+. "$(dirname "$0")/harness.sh"
 # box X Y Z: a closed box of that size, as OBJ.
 box() {
     printf 'v 0 0 0\nv %s 0 0\nv %s %s 0\nv 0 %s 0\nv 0 0 %s\nv %s 0 %s\nv %s %s %s\nv 0 %s %s\n' \
@@ -49,5 +45,4 @@ for size in 1920x1080 3840x2160; do
         ok "$size renders without flags: $(sed -n 's/.*\(arena peak [0-9]* bytes, render targets [0-9]* bytes\).*/\1/p' "$tmp/out")"
     else bad "$size: $(cat "$tmp/out")"; fi
 done
-echo "framing: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish framing

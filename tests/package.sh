@@ -11,11 +11,7 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 for t in cpack dpkg-deb systemd-analyze; do
     command -v "$t" >/dev/null || { echo "SKIP: $t is not installed"; exit 77; }
 done
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); echo "ok   $1"; }
-bad() { fail=$((fail + 1)); echo "FAIL $1"; }
+. "$(dirname "$0")/harness.sh"
 start=$(date +%s)
 if ! deb=$("$src/tools/package.sh" "$tmp/build" 2>"$tmp/err" | tail -1) || [ ! -f "$deb" ]; then
     echo "FAIL tools/package.sh: $(tail -5 "$tmp/err")"
@@ -63,5 +59,4 @@ if (cd "$tmp/elsewhere" && "$root/usr/bin/jade" render --size 128x128 --out pkg.
 else bad "unpacked render: $(cat "$tmp/render")"; fi
 if zcat "$root/usr/share/man/man1/jade.1.gz" | grep -q "kiosk.conf"; then ok "the manual page documents kiosk.conf"
 else bad "manual page"; fi
-echo "package: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish package
