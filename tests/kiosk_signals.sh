@@ -115,8 +115,9 @@ if command -v Xvfb >/dev/null; then
         kill -TERM "$pid"
         wait "$pid"
         rc=$?
-        if grep -q "window 640x480, full screen" "$out/kiosk_drag.err"; then
-            pass=$((pass + 1)); echo "ok   x11 kiosk fills the 640x480 screen: $(grep -o 'window .*' "$out/kiosk_drag.err")"
+        if grep -q "window 640x480, full screen" "$out/kiosk_drag.err" &&
+           grep -q "_NET_WM_STATE: .*_NET_WM_STATE_FULLSCREEN" "$out/kiosk_drag.send"; then
+            pass=$((pass + 1)); echo "ok   x11 kiosk fills the 640x480 screen: $(grep -o 'window .*' "$out/kiosk_drag.err"), $(grep -o '_NET_WM_STATE: .*' "$out/kiosk_drag.send")"
         else fail=$((fail + 1)); echo "FAIL x11 kiosk is not full screen: $(head -1 "$out/kiosk_drag.err")"; fi
         if [ "$rc" -eq 0 ] && grep -q "^kiosk: touched at" "$out/kiosk_drag.out" && grep -q "^kiosk: back in place" "$out/kiosk_drag.out"; then
             pass=$((pass + 1)); echo "ok   x11 drag: $(grep '^kiosk: touched' "$out/kiosk_drag.out"); $(grep '^kiosk: back in place' "$out/kiosk_drag.out")"

@@ -1,11 +1,14 @@
 /* x11_drag NAME DX DY: drags across the X window named NAME with the left
  * button, as a finger on a touch screen under X would (ButtonPress, ten
  * motions, ButtonRelease), through XSendEvent: no XTest extension needed.
- * Exit 0 when the window was found and the events sent. */
+ * Says first which _NET_WM_STATE atoms the window carries (a full-screen
+ * kiosk has _NET_WM_STATE_FULLSCREEN). Exit 0 when the window was found and
+ * the events sent. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <X11/Xatom.h>
 #include <X11/Xlib.h>
 
 static Window find(Display *d, Window w, const char *name)
@@ -54,6 +57,20 @@ int main(int argc, char **argv)
     if (!d) { fprintf(stderr, "x11_drag: no display\n"); return 1; }
     Window w = find(d, DefaultRootWindow(d), argv[1]);
     if (!w) { fprintf(stderr, "x11_drag: no window named %s\n", argv[1]); return 1; }
+    Atom type, *atoms = NULL;
+    int format;
+    unsigned long n = 0, after;
+    printf("x11_drag: _NET_WM_STATE:");
+    if (XGetWindowProperty(d, w, XInternAtom(d, "_NET_WM_STATE", False), 0, 16, False, XA_ATOM, &type, &format, &n,
+                           &after, (unsigned char **)&atoms) == Success && atoms) {
+        for (unsigned long i = 0; i < n; i++) {
+            char *name = XGetAtomName(d, atoms[i]);
+            printf(" %s", name ? name : "?");
+            if (name) XFree(name);
+        }
+        XFree(atoms);
+    }
+    printf("\n");
     int dx = atoi(argv[2]), dy = atoi(argv[3]), x = 50, y = 50;
     send(d, w, ButtonPress, x, y, ButtonPressMask);
     for (int i = 1; i <= 10; i++) send(d, w, MotionNotify, x + dx * i / 10, y + dy * i / 10, PointerMotionMask);
