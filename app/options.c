@@ -382,9 +382,10 @@ int jd_options_parse_file(jd_options *o, int command, const char *cmd, const cha
         fprintf(stderr, "jade %s: %s: cannot open: %s\n", cmd, path, strerror(errno));
         return 0;
     }
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || (size_t)st.st_size >= cap) {
+    int regular = fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
+    if (!regular || (size_t)st.st_size >= cap) {
         fprintf(stderr, "jade %s: %s: %s\n", cmd, path,
-                !S_ISREG(st.st_mode) ? "not a regular file" : "larger than a configuration file may be");
+                !regular ? "not a regular file" : "larger than a configuration file may be (64 KiB)");
         close(fd);
         return 0;
     }
