@@ -68,12 +68,13 @@ mount -t devtmpfs dev /dev
 for f in $(for f in $order; do printf '%s ' "$(basename "$f")"; done); do insmod /mod/\$f; done
 mount -t 9p -o trans=virtio,version=9p2000.L,ro,msize=262144 host /host || echo "GUEST: the host's files cannot be mounted"
 for d in proc sys dev; do mount --bind /\$d /host/\$d; done
-mount -t tmpfs tmp /host/tmp
+# Writable places on top of the read-only host: /run only. Not /tmp, whose
+# host files (a checkout under /tmp, the program) the guest must still see.
 mount -t tmpfs run /host/run
-mkdir -p /host/tmp/out
-mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 out /host/tmp/out
+mkdir -p /host/run/jade-out
+mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 out /host/run/jade-out
 echo "GUEST: up in \$(cut -d' ' -f1 /proc/uptime) s"
-chroot /host /bin/sh "$here/tests/kms_guest.sh" "$jade" "$work/vkms-$kver.ko" "$work/uinput_touch" /tmp/out
+chroot /host /bin/sh "$here/tests/kms_guest.sh" "$jade" "$work/vkms-$kver.ko" "$work/uinput_touch" /run/jade-out
 sync
 poweroff -f
 EOI
