@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "health.h"
+#include "image_out.h"
 
 #define KIOSK_SAMPLES 4096 /* the last frames kept for the statistics */
 
@@ -90,6 +91,23 @@ static void reload(jd_session *s, jd_options *o, jd_scene *sc, int argc, char **
             o->config ? o->config : "the command line", s->mesh_path, o->material, o->light_speed);
 }
 
+/* --screenshot: what the display shows at the end, as the display hardware
+ * reads it (not jade's own frame): proof from afar of what a kiosk shows.
+ * 1 after saying why it failed. */
+static int capture(jd_session *s, const char *path)
+{
+    int w, h;
+    jd_platform_size(s->platform, &w, &h);
+    uint8_t *px = malloc((size_t)w * (size_t)h * 4);
+    jd_error err = {0};
+    jd_result r = px ? jd_platform_capture(s->platform, px, &err) : jd_fail(&err, JD_ERR_BUDGET, "no memory for the capture");
+    if (!r) r = jd_png_write(path, w, h, px, &err);
+    if (r) fprintf(stderr, "jade kiosk: --screenshot %s: %s\n", path, err.msg);
+    else printf("kiosk: what the display scans out (%dx%d) written to %s\n", w, h, path);
+    free(px);
+    return r != JD_OK;
+}
+
 static double kiosk_times[KIOSK_SAMPLES], kiosk_sorted[KIOSK_SAMPLES];
 static char kiosk_store[2][65536]; /* the configuration's text, this one and the next */
 
@@ -103,6 +121,10 @@ int jd_cmd_kiosk(int argc, char **argv)
     int cur = 0;
     if (o.config && !kiosk_options(&o, o.config, argc, argv, kiosk_store[cur], sizeof kiosk_store[0])) return 2;
     o.fullscreen = 1;
+    if (o.screenshot && strcmp(o.platform, "drm") != 0) {
+        fprintf(stderr, "jade kiosk: --screenshot reads back what a display scans out, which only --platform drm can\n");
+        return 2;
+    }
     jd_quit_on_signals();
     jd_session s;
     if (!jd_session_open(&s, &o, "kiosk")) {
@@ -127,6 +149,14 @@ int jd_cmd_kiosk(int argc, char **argv)
         while (jd_platform_poll(s.platform, &ev)) {
             if (ev.type == JD_EVENT_QUIT) quit = 1;
             else if (ev.type == JD_EVENT_RELOAD) reread = 1;
+            else if (ev.type == JD_EVENT_RESIZE && jd_renderer_resize(s.renderer, ev.w, ev.h, &err)) {
+                /* A display plugged in with another mode (drm): within the
+                 * size the budget was taken for, which the platform keeps. */
+                fprintf(stderr, "jade kiosk: %s\n", err.msg);
+                rc = 1;
+                quit = 1;
+            } else if (ev.type == JD_EVENT_RESIZE)
+                printf("kiosk: the display is now %dx%d\n", ev.w, ev.h);
             else if (ev.type == JD_EVENT_DRAG) {
                 int w, h;
                 jd_platform_size(s.platform, &w, &h);
@@ -188,6 +218,7 @@ int jd_cmd_kiosk(int argc, char **argv)
             t_log = now;
         }
     }
+    if (o.screenshot && rc == 0 && capture(&s, o.screenshot)) rc = 1;
     if (frames > 0) {
         int n = frames < KIOSK_SAMPLES ? (int)frames : KIOSK_SAMPLES;
         memcpy(sorted, times, sizeof(double) * (size_t)n);
@@ -196,7 +227,8 @@ int jd_cmd_kiosk(int argc, char **argv)
         jd_platform_present_stats(s.platform, &ps);
         printf("kiosk: %ld frames in %.1f s, frame time median %.2f ms, p95 %.2f ms, missed vblanks %u",
                frames, (t_prev - t_start) / 1000.0, sorted[n / 2], sorted[(n * 95) / 100], ps.missed_vblanks);
-        if (ps.refresh_hz > 0) printf(" (display %.0f Hz), page flips %u", ps.refresh_hz, ps.flips);
+        if (ps.refresh_hz > 0)
+            printf(" (display %.0f Hz), page flips %u, modesets %u", ps.refresh_hz, ps.flips, ps.modesets);
         printf("\n");
     }
     jd_session_close(&s);

@@ -17,6 +17,8 @@ typedef struct jd_platform_ops {
     void (*stats)(const void *impl, jd_present_stats *st);
     const char *(*describe)(const void *impl);
     void (*close)(void *impl);
+    /* What the display scans out, as top-down RGBA rows (optional). */
+    jd_result (*capture)(void *impl, uint8_t *dst, jd_error *err);
 } jd_platform_ops;
 
 extern const jd_platform_ops jd_headless_ops;

@@ -12,6 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <sys/mman.h>
+#include <sys/socket.h>
+#include <linux/netlink.h>
 
 #include <xf86drm.h>
 #include <xf86drmMode.h>
@@ -47,7 +50,14 @@ typedef struct drm_platform {
     uint32_t plane_id, mode_blob;
     uint32_t p_conn_crtc, p_crtc_mode, p_crtc_active, p_fb, p_plane_crtc, p_src_x, p_src_y, p_src_w, p_src_h,
         p_crtc_x, p_crtc_y, p_crtc_w, p_crtc_h;
-    unsigned frames, missed, last_seq, flips;
+    unsigned frames, missed, last_seq, flips, modesets;
+    /* Hotplug: the kernel's uevents, the card's name in them, whether the
+     * display is gone, what was asked for and the most the budget allows. */
+    int uevent_fd;
+    char card[32];
+    int lost, want_w, want_h, want_hz, max_w, max_h;
+    EGLConfig cfg;
+    char failed[256]; /* a hotplug that could not be followed, said at the next present */
     char describe[512];
 } drm_platform;
 
@@ -152,6 +162,7 @@ static jd_result choose_output(drm_platform *p, const jd_platform_desc *desc, jd
         r = jd_fail(err, JD_ERR_ARG, "display mode '%s' is not WxH or WxH@Hz", desc->display_mode);
         goto done;
     }
+    p->want_w = w, p->want_h = h, p->want_hz = hz;
     int m = jd_drm_pick_mode(info[c].modes, info[c].num_modes, w, h, hz);
     if (m < 0) {
         r = jd_fail(err, JD_ERR_PLATFORM, "%s: %s does not offer the mode %s", p->device, p->connector_name,
@@ -235,7 +246,6 @@ static jd_result setup_atomic(drm_platform *p, jd_error *err)
         return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: the atomic properties jade needs are missing", p->device);
     if (drmModeCreatePropertyBlob(p->fd, &p->mode, sizeof p->mode, &p->mode_blob) != 0)
         return jd_fail(err, JD_ERR_PLATFORM, "%s: cannot create the mode blob: %s", p->device, strerror(errno));
-    p->atomic = 1;
     return JD_OK;
 }
 
@@ -287,6 +297,116 @@ static EGLConfig match_config(EGLDisplay dpy, uint32_t format, int max_samples)
     return best;
 }
 
+/* The kernel's uevents, to follow the display when it is unplugged, comes
+ * back or changes its modes: read straight from the kernel, since kiosks
+ * often run without a udev daemon. Without the socket the kiosk still
+ * runs, it only does not follow. */
+static void open_uevents(drm_platform *p)
+{
+    char *real = realpath(p->device, NULL); /* /dev/dri/by-path/... names card0 too */
+    const char *dev = real ? real : p->device, *slash = strrchr(dev, '/');
+    snprintf(p->card, sizeof p->card, "%.31s", slash ? slash + 1 : dev);
+    free(real);
+    p->uevent_fd = socket(AF_NETLINK, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, NETLINK_KOBJECT_UEVENT);
+    if (p->uevent_fd < 0) return;
+    struct sockaddr_nl a;
+    memset(&a, 0, sizeof a);
+    a.nl_family = AF_NETLINK;
+    a.nl_groups = 1; /* the kernel's own messages, not udev's */
+    if (bind(p->uevent_fd, (struct sockaddr *)&a, sizeof a) != 0) {
+        close(p->uevent_fd);
+        p->uevent_fd = -1;
+    }
+}
+
+/* 1 when the kernel said something about this card since the last call
+ * (or messages were lost: probing once more costs little). */
+static int card_changed(drm_platform *p)
+{
+    int hit = 0;
+    char buf[8192];
+    while (p->uevent_fd >= 0) {
+        struct sockaddr_nl from;
+        socklen_t len = sizeof from;
+        ssize_t n = recvfrom(p->uevent_fd, buf, sizeof buf, MSG_DONTWAIT, (struct sockaddr *)&from, &len);
+        if (n < 0) {
+            if (errno == ENOBUFS) { hit = 1; continue; }
+            break;
+        }
+        if (from.nl_pid == 0 && jd_drm_uevent_is_change(buf, (size_t)n, p->card)) hit = 1;
+    }
+    return hit;
+}
+
+/* A new GBM surface and EGL window surface at the mode's size, the context
+ * kept. The old buffers go first: the one on screen with them (the modeset
+ * that follows puts a new one there). */
+static int remake_surface(drm_platform *p)
+{
+    static const EGLint no_attribs[] = {EGL_NONE};
+    eglMakeCurrent(p->edpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (p->shown) gbm_surface_release_buffer(p->gbm_surface, p->shown);
+    p->shown = NULL;
+    if (p->surf) eglDestroySurface(p->edpy, p->surf);
+    p->surf = EGL_NO_SURFACE;
+    gbm_surface_destroy(p->gbm_surface);
+    p->gbm_surface = gbm_surface_create(p->gbm, p->mode.hdisplay, p->mode.vdisplay, p->format,
+                                        GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+    if (p->gbm_surface)
+        p->surf = eglCreateWindowSurface(p->edpy, p->cfg, (EGLNativeWindowType)p->gbm_surface, no_attribs);
+    if (!p->gbm_surface || p->surf == EGL_NO_SURFACE || !eglMakeCurrent(p->edpy, p->surf, p->surf, p->ctx)) {
+        snprintf(p->failed, sizeof p->failed, "%s: no surface for the new mode %dx%d (0x%x)", p->device,
+                 p->mode.hdisplay, p->mode.vdisplay, eglGetError());
+        return 0;
+    }
+    return 1;
+}
+
+/* After a uevent: the connector probed again and followed (see
+ * jd_drm_follow_connector). 1 and a RESIZE event when the picture's size
+ * changed. */
+static int follow_display(drm_platform *p, jd_event *ev)
+{
+    drmModeConnector *c = drmModeGetConnector(p->fd, p->connector_id); /* as DRM master: probes it */
+    if (!c) return 0;
+    static jd_drm_mode modes[MAX_MODES];
+    int n = c->count_modes < MAX_MODES ? c->count_modes : MAX_MODES;
+    for (int k = 0; k < n; k++) {
+        modes[k].w = c->modes[k].hdisplay;
+        modes[k].h = c->modes[k].vdisplay;
+        modes[k].hz = (int)c->modes[k].vrefresh;
+        modes[k].preferred = (c->modes[k].type & DRM_MODE_TYPE_PREFERRED) != 0;
+    }
+    jd_drm_connector now = {c->connector_type, c->connector_type_id, c->connection == DRM_MODE_CONNECTED, n, modes};
+    char why[300];
+    int m, resized = 0;
+    jd_drm_follow f = jd_drm_follow_connector(&now, p->lost, p->mode.hdisplay, p->mode.vdisplay, (int)p->mode.vrefresh,
+                                              p->want_w, p->want_h, p->want_hz, p->max_w, p->max_h, &m, why, sizeof why);
+    if (why[0]) fprintf(stderr, "jade: %s: %s\n", p->device, why);
+    if (f == JD_DRM_LOST) p->lost = 1;
+    if (f == JD_DRM_MODESET) {
+        resized = c->modes[m].hdisplay != p->mode.hdisplay || c->modes[m].vdisplay != p->mode.vdisplay;
+        p->mode = c->modes[m];
+        p->lost = 0;
+        p->modeset_done = 0; /* the next present sets the mode */
+        if (p->mode_blob) {
+            drmModeDestroyPropertyBlob(p->fd, p->mode_blob);
+            p->mode_blob = 0;
+            if (drmModeCreatePropertyBlob(p->fd, &p->mode, sizeof p->mode, &p->mode_blob) != 0)
+                snprintf(p->failed, sizeof p->failed, "%s: cannot create the new mode's blob: %s", p->device,
+                         strerror(errno));
+        }
+        if (resized && !remake_surface(p)) resized = 0;
+    }
+    drmModeFreeConnector(c);
+    if (!resized) return 0;
+    memset(ev, 0, sizeof *ev);
+    ev->type = JD_EVENT_RESIZE;
+    ev->w = p->mode.hdisplay;
+    ev->h = p->mode.vdisplay;
+    return 1;
+}
+
 static jd_result drm_probe(const jd_platform_desc *desc, jd_error *err)
 {
     drm_platform probe;
@@ -309,7 +429,7 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
 {
     drm_platform *p = &g_drm;
     memset(p, 0, sizeof *p);
-    p->fd = -1;
+    p->fd = p->uevent_fd = -1;
     jd_result r = open_device(p, desc->drm_device, err);
     if (r) return fail_open(p, r);
     /* A display server holding DRM master makes every modeset fail: say so
@@ -321,7 +441,12 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
     }
     if ((r = choose_output(p, desc, err))) return fail_open(p, r);
     p->saved_crtc = drmModeGetCrtc(p->fd, p->crtc_id);
-    if (desc->atomic && (r = setup_atomic(p, err))) return fail_open(p, r);
+    if (desc->atomic) {
+        if ((r = setup_atomic(p, err))) return fail_open(p, r);
+        p->atomic = 1;
+    }
+    p->max_w = p->mode.hdisplay, p->max_h = p->mode.vdisplay;
+    open_uevents(p);
 
     p->gbm = gbm_create_device(p->fd);
     if (!p->gbm) return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: GBM cannot use this device", p->device));
@@ -342,7 +467,7 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
     EGLint major, minor;
     if (p->edpy == EGL_NO_DISPLAY || !eglInitialize(p->edpy, &major, &minor) || !eglBindAPI(EGL_OPENGL_ES_API))
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: EGL cannot use the GBM device", p->device));
-    EGLConfig cfg = match_config(p->edpy, p->format, desc->single_sample ? 1 : 4);
+    EGLConfig cfg = p->cfg = match_config(p->edpy, p->format, desc->single_sample ? 1 : 4);
     if (!cfg)
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: no EGL config matches the GBM format %s", p->device,
                                     p->format == GBM_FORMAT_XRGB8888 ? "XRGB8888" : "ARGB8888"));
@@ -356,9 +481,12 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
              p->connector_name, p->mode.hdisplay, p->mode.vdisplay, p->mode.vrefresh,
              p->format == GBM_FORMAT_XRGB8888 ? "XRGB8888" : "ARGB8888", major, minor,
              eglQueryString(p->edpy, EGL_VENDOR));
+    size_t at = strlen(p->describe);
+    snprintf(p->describe + at, sizeof p->describe - at, "; hotplug %s",
+             p->uevent_fd >= 0 ? "followed (kernel uevents)" : "not followed (no uevent socket)");
     char why[96] = "";
     p->input = jd_input_open(p->mode.hdisplay, p->mode.vdisplay, why, sizeof why);
-    size_t at = strlen(p->describe);
+    at = strlen(p->describe);
     if (p->input)
         snprintf(p->describe + at, sizeof p->describe - at, "; input: %d touch or pointer device(s) on seat0 (libinput)",
                  jd_input_devices(p->input));
@@ -418,8 +546,17 @@ static jd_result wait_flip(drm_platform *p, jd_error *err)
 static jd_result drm_present(void *impl, jd_error *err)
 {
     drm_platform *p = impl;
+    if (p->failed[0]) return jd_fail(err, JD_ERR_PLATFORM, "%s", p->failed);
     if (!eglSwapBuffers(p->edpy, p->surf)) return jd_fail(err, JD_ERR_PLATFORM, "eglSwapBuffers failed (0x%x)", eglGetError());
     struct gbm_bo *bo = gbm_surface_lock_front_buffer(p->gbm_surface);
+    if (p->lost) {
+        /* Nothing to show it on: the frame is dropped, and the loop waits
+         * for the kernel's next word (or a signal), a second at most. */
+        if (bo) gbm_surface_release_buffer(p->gbm_surface, bo);
+        struct pollfd pfd = {p->uevent_fd, POLLIN, 0};
+        poll(&pfd, 1, 1000);
+        return JD_OK;
+    }
     uint32_t fb = bo ? fb_for(p, bo) : 0;
     if (!fb) return jd_fail(err, JD_ERR_PLATFORM, "%s: cannot make a scan-out framebuffer", p->device);
     if (!p->modeset_done) {
@@ -430,6 +567,9 @@ static jd_result drm_present(void *impl, jd_error *err)
             return jd_fail(err, JD_ERR_PLATFORM, "%s: modeset on %s failed: %s%s", p->device, p->connector_name,
                            strerror(errno), errno == EACCES ? " (another process is DRM master)" : "");
         p->modeset_done = 1;
+        if (++p->modesets > 1) /* after a hotplug: the journal says the picture is back */
+            fprintf(stderr, "jade: %s: %s: %dx%d@%d set again, frames shown\n", p->device, p->connector_name,
+                    p->mode.hdisplay, p->mode.vdisplay, p->mode.vrefresh);
     } else {
         int rc = p->atomic ? atomic_commit(p, fb, 0)
                            : drmModePageFlip(p->fd, p->crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, p);
@@ -452,6 +592,15 @@ static void drm_size(const void *impl, int *w, int *h)
     *h = p->mode.vdisplay;
 }
 
+/* The first mode's size: the renderer's budget is taken for it once, and a
+ * display plugged in later gets a mode within it. */
+static void drm_max_size(const void *impl, int *w, int *h)
+{
+    const drm_platform *p = impl;
+    *w = p->max_w;
+    *h = p->max_h;
+}
+
 static unsigned drm_framebuffer(const void *impl)
 {
     (void)impl;
@@ -460,8 +609,11 @@ static unsigned drm_framebuffer(const void *impl)
 
 static int drm_poll(void *impl, jd_event *ev)
 {
-    /* Signals arrive through jd_quit_requested; touch and mouse here. */
-    return jd_input_poll(((drm_platform *)impl)->input, ev);
+    /* Signals arrive through jd_quit_requested; the display's comings and
+     * goings, touch and mouse here. */
+    drm_platform *p = impl;
+    if (card_changed(p) && follow_display(p, ev)) return 1;
+    return jd_input_poll(p->input, ev);
 }
 
 static void drm_stats(const void *impl, jd_present_stats *st)
@@ -470,10 +622,131 @@ static void drm_stats(const void *impl, jd_present_stats *st)
     st->frames = p->frames;
     st->missed_vblanks = p->missed;
     st->flips = p->flips;
+    st->modesets = p->modesets;
     st->refresh_hz = p->mode.vrefresh;
 }
 
 static const char *drm_describe(const void *impl) { return ((const drm_platform *)impl)->describe; }
+
+/* The writeback connector that can join the kiosk's CRTC, 0 if none. */
+static uint32_t find_writeback(drm_platform *p)
+{
+    drmModeRes *res = drmModeGetResources(p->fd);
+    uint32_t found = 0;
+    int crtc_index = -1;
+    for (int i = 0; res && i < res->count_crtcs; i++)
+        if (res->crtcs[i] == p->crtc_id) crtc_index = i;
+    for (int i = 0; res && crtc_index >= 0 && i < res->count_connectors && !found; i++) {
+        drmModeConnector *c = drmModeGetConnector(p->fd, res->connectors[i]);
+        for (int e = 0; c && c->connector_type == DRM_MODE_CONNECTOR_WRITEBACK && e < c->count_encoders; e++) {
+            drmModeEncoder *enc = drmModeGetEncoder(p->fd, c->encoders[e]);
+            if (enc && (enc->possible_crtcs & (1u << crtc_index))) found = c->connector_id;
+            drmModeFreeEncoder(enc);
+        }
+        drmModeFreeConnector(c);
+    }
+    drmModeFreeResources(res);
+    return found;
+}
+
+/* Whether the writeback connector writes XRGB8888 (its property lists
+ * the formats it can). */
+static int writeback_takes_xrgb(drm_platform *p, uint32_t wb)
+{
+    uint64_t blob_id = prop_value(p->fd, wb, DRM_MODE_OBJECT_CONNECTOR, "WRITEBACK_PIXEL_FORMATS");
+    drmModePropertyBlobRes *blob = blob_id ? drmModeGetPropertyBlob(p->fd, (uint32_t)blob_id) : NULL;
+    int ok = 0;
+    for (uint32_t i = 0; blob && i < blob->length / 4; i++) ok |= ((const uint32_t *)blob->data)[i] == GBM_FORMAT_XRGB8888;
+    drmModeFreePropertyBlob(blob);
+    return ok;
+}
+
+/* One writeback job: the connector joins the CRTC with a dumb buffer to
+ * write into and a fence to say when it is written, then leaves again.
+ * Joining a CRTC is a modeset in the kernel's eyes, hence ALLOW_MODESET. */
+static jd_result drm_capture(void *impl, uint8_t *dst, jd_error *err)
+{
+    drm_platform *p = impl;
+    if (!p->modeset_done || p->lost) return jd_fail(err, JD_ERR_PLATFORM, "%s: nothing is on the display to capture", p->device);
+    if (drmSetClientCap(p->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0 ||
+        drmSetClientCap(p->fd, DRM_CLIENT_CAP_WRITEBACK_CONNECTORS, 1) != 0)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: the driver offers no writeback connectors (it needs atomic modesetting)",
+                       p->device);
+    uint32_t wb = find_writeback(p);
+    if (!wb) return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: no writeback connector can read back the CRTC of %s", p->device, p->connector_name);
+    if (!writeback_takes_xrgb(p, wb))
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: the writeback connector does not write XRGB8888", p->device);
+    const uint32_t C = DRM_MODE_OBJECT_CONNECTOR;
+    uint32_t p_crtc = prop_id(p->fd, wb, C, "CRTC_ID"), p_fb = prop_id(p->fd, wb, C, "WRITEBACK_FB_ID"),
+             p_fence = prop_id(p->fd, wb, C, "WRITEBACK_OUT_FENCE_PTR");
+    if (!p_crtc || !p_fb || !p_fence) return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: the writeback connector lacks its properties", p->device);
+    int w = p->mode.hdisplay, h = p->mode.vdisplay;
+    uint32_t handle = 0, pitch = 0, fb = 0;
+    uint64_t size = 0, offset = 0;
+    void *map = MAP_FAILED;
+    int fence = -1;
+    jd_result r = JD_OK;
+    if (drmModeCreateDumbBuffer(p->fd, (uint32_t)w, (uint32_t)h, 32, 0, &handle, &pitch, &size) != 0) {
+        r = jd_fail(err, JD_ERR_PLATFORM, "%s: no %dx%d buffer for the capture: %s", p->device, w, h, strerror(errno));
+        goto done;
+    }
+    uint32_t handles[4] = {handle}, pitches[4] = {pitch}, offsets[4] = {0};
+    if (drmModeAddFB2(p->fd, (uint32_t)w, (uint32_t)h, GBM_FORMAT_XRGB8888, handles, pitches, offsets, &fb, 0) != 0) {
+        r = jd_fail(err, JD_ERR_PLATFORM, "%s: no framebuffer for the capture: %s", p->device, strerror(errno));
+        goto done;
+    }
+    drmModeAtomicReq *req = drmModeAtomicAlloc();
+    if (!req) { r = jd_fail(err, JD_ERR_PLATFORM, "no memory for an atomic request"); goto done; }
+    drmModeAtomicAddProperty(req, wb, p_crtc, p->crtc_id);
+    drmModeAtomicAddProperty(req, wb, p_fb, fb);
+    drmModeAtomicAddProperty(req, wb, p_fence, (uint64_t)(uintptr_t)&fence);
+    int rc = drmModeAtomicCommit(p->fd, req, DRM_MODE_ATOMIC_ALLOW_MODESET, NULL);
+    drmModeAtomicFree(req);
+    if (rc != 0) {
+        r = jd_fail(err, JD_ERR_PLATFORM, "%s: the driver refused the writeback job: %s", p->device, strerror(errno));
+        goto done;
+    }
+    struct pollfd pfd = {fence, POLLIN, 0};
+    int k;
+    do k = poll(&pfd, 1, 2000);
+    while (k < 0 && errno == EINTR);
+    if (k <= 0) {
+        r = jd_fail(err, JD_ERR_PLATFORM, "%s: the writeback did not complete within 2 s", p->device);
+        goto detach;
+    }
+    if (drmModeMapDumbBuffer(p->fd, handle, &offset) != 0 ||
+        (map = mmap(NULL, (size_t)size, PROT_READ, MAP_SHARED, p->fd, (off_t)offset)) == MAP_FAILED) {
+        r = jd_fail(err, JD_ERR_PLATFORM, "%s: cannot map the captured buffer: %s", p->device, strerror(errno));
+        goto detach;
+    }
+    /* XRGB8888 is a little-endian word: bytes B, G, R, X. */
+    for (int y = 0; y < h; y++) {
+        const uint8_t *src = (const uint8_t *)map + (size_t)y * pitch;
+        uint8_t *out = dst + (size_t)y * (size_t)w * 4;
+        for (int x = 0; x < w; x++) {
+            out[4 * x] = src[4 * x + 2];
+            out[4 * x + 1] = src[4 * x + 1];
+            out[4 * x + 2] = src[4 * x];
+            out[4 * x + 3] = 255;
+        }
+    }
+detach:
+    /* The connector leaves the CRTC, which goes on as it was. */
+    req = drmModeAtomicAlloc();
+    if (req) {
+        drmModeAtomicAddProperty(req, wb, p_crtc, 0);
+        if (drmModeAtomicCommit(p->fd, req, DRM_MODE_ATOMIC_ALLOW_MODESET, NULL) != 0 && !r)
+            r = jd_fail(err, JD_ERR_PLATFORM, "%s: the writeback connector would not leave the CRTC: %s", p->device,
+                        strerror(errno));
+        drmModeAtomicFree(req);
+    }
+done:
+    if (map != MAP_FAILED) munmap(map, (size_t)size);
+    if (fence >= 0) close(fence);
+    if (fb) drmModeRmFB(p->fd, fb);
+    if (handle) drmModeDestroyDumbBuffer(p->fd, handle);
+    return r;
+}
 
 /* Shutdown, SIGTERM's included: the display goes back first, while jade's
  * last frame is still on it (no black gap, one modeset); then everything
@@ -508,6 +781,7 @@ static void drm_close(void *impl)
         eglTerminate(p->edpy);
     }
     if (p->gbm_surface) gbm_surface_destroy(p->gbm_surface); /* its buffers' framebuffers go with them */
+    if (p->uevent_fd >= 0) close(p->uevent_fd);
     if (p->mode_blob) drmModeDestroyPropertyBlob(p->fd, p->mode_blob);
     if (p->gbm) gbm_device_destroy(p->gbm);
     if (p->fd >= 0) {
@@ -515,9 +789,10 @@ static void drm_close(void *impl)
         close(p->fd);
     }
     memset(p, 0, sizeof *p);
-    p->fd = -1;
+    p->fd = p->uevent_fd = -1;
 }
 
 const jd_platform_ops jd_drm_ops = {
-    "drm", drm_probe, drm_open, drm_size, drm_size, drm_framebuffer, drm_present, drm_poll, drm_stats, drm_describe, drm_close,
+    "drm", drm_probe, drm_open, drm_size, drm_max_size, drm_framebuffer, drm_present, drm_poll, drm_stats, drm_describe, drm_close,
+    drm_capture,
 };

@@ -68,6 +68,70 @@ int jd_drm_pick_mode(const jd_drm_mode *m, int n, int w, int h, int hz)
     return best;
 }
 
+jd_drm_follow jd_drm_follow_connector(const jd_drm_connector *now, int lost, int cur_w, int cur_h, int cur_hz,
+                                      int want_w, int want_h, int want_hz, int max_w, int max_h, int *mode_out,
+                                      char *why, size_t cap)
+{
+    char name[32];
+    jd_drm_connector_name(now, name, sizeof name);
+    *mode_out = -1;
+    why[0] = 0;
+    if (!now->connected || now->num_modes == 0) {
+        if (!lost) snprintf(why, cap, "%s: the display went away; waiting for it to come back", name);
+        return lost ? JD_DRM_KEEP : JD_DRM_LOST;
+    }
+    int m = want_w ? jd_drm_pick_mode(now->modes, now->num_modes, want_w, want_h, want_hz) : -1;
+    const char *note = "";
+    if (m < 0) {
+        m = jd_drm_pick_mode(now->modes, now->num_modes, 0, 0, 0);
+        if (want_w) note = " (the mode asked for is not offered now: the preferred one instead)";
+    }
+    if (m >= 0 && (now->modes[m].w > max_w || now->modes[m].h > max_h)) {
+        /* The renderer took its memory once, for the first mode: the largest
+         * mode within that, else nothing. */
+        m = -1;
+        for (int i = 0; i < now->num_modes; i++) {
+            const jd_drm_mode *c = &now->modes[i];
+            if (c->w > max_w || c->h > max_h) continue;
+            if (m < 0 || (long)c->w * c->h > (long)now->modes[m].w * now->modes[m].h ||
+                ((long)c->w * c->h == (long)now->modes[m].w * now->modes[m].h && c->hz > now->modes[m].hz))
+                m = i;
+        }
+        note = " (the largest mode within the size jade started with)";
+        if (m < 0) {
+            if (!lost)
+                snprintf(why, cap, "%s: no mode the display offers fits within %dx%d, the size jade started with; "
+                         "waiting (restart jade for a larger display)", name, max_w, max_h);
+            return lost ? JD_DRM_KEEP : JD_DRM_LOST;
+        }
+    }
+    const jd_drm_mode *n = &now->modes[m];
+    if (!lost && n->w == cur_w && n->h == cur_h && n->hz == cur_hz) return JD_DRM_KEEP;
+    *mode_out = m;
+    snprintf(why, cap, "%s: %s: %dx%d@%d%s", name, lost ? "the display is back" : "the display's modes changed", n->w,
+             n->h, n->hz, note);
+    return JD_DRM_MODESET;
+}
+
+int jd_drm_uevent_is_change(const char *msg, size_t len, const char *card)
+{
+    int drm = 0, change = 0, ours = 0;
+    char devname[48];
+    snprintf(devname, sizeof devname, "DEVNAME=dri/%s", card);
+    /* The header ("change@/devices/...") then KEY=VALUE strings; a message
+     * from udev rather than the kernel starts with "libudev" and is skipped
+     * by the KEY tests failing on its binary header. */
+    for (size_t at = 0; at < len;) {
+        const char *s = msg + at;
+        size_t n = strnlen(s, len - at);
+        if (n == 13 && !memcmp(s, "ACTION=change", 13)) change = 1;
+        else if (n == 13 && !memcmp(s, "SUBSYSTEM=drm", 13)) drm = 1;
+        else if (n == strlen(devname) && !memcmp(s, devname, n)) ours = 1;
+        at += n + 1;
+    }
+    return drm && change && ours;
+}
+
 int jd_drm_holders(const char *proc_root, const char *device, int self_pid, char *out, size_t cap)
 {
     struct stat dev;

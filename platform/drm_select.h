@@ -29,6 +29,29 @@ int jd_drm_parse_mode(const char *s, int *w, int *h, int *hz);
  * mode, else the largest (then the fastest). -1 when none matches. */
 int jd_drm_pick_mode(const jd_drm_mode *m, int n, int w, int h, int hz);
 
+/* Following the display after a hotplug event. */
+typedef enum jd_drm_follow {
+    JD_DRM_KEEP,   /* nothing to do: the display shows what it showed */
+    JD_DRM_LOST,   /* the display went away (or offers nothing that fits): wait */
+    JD_DRM_MODESET /* set the mode *mode_out again: back, or its modes changed */
+} jd_drm_follow;
+
+/* What the kiosk does once the connector it drives has been probed again
+ * (`now`): lost says whether it was gone already; cur_* the mode in use;
+ * want_* what was asked for (w 0: the preferred mode); max_* the largest
+ * picture the renderer's budget allows. A mode that was asked for and is
+ * no longer offered gives way to the preferred one; one that does not fit
+ * the budget to the largest that does. why: one line for the log. */
+jd_drm_follow jd_drm_follow_connector(const jd_drm_connector *now, int lost, int cur_w, int cur_h, int cur_hz,
+                                      int want_w, int want_h, int want_hz, int max_w, int max_h, int *mode_out,
+                                      char *why, size_t cap);
+
+/* 1 when a kernel uevent (a header line and NUL-separated KEY=VALUE
+ * strings, as read from a NETLINK_KOBJECT_UEVENT socket) is a change of
+ * the DRM device `card` ("card0"): a hotplug, or any other change after
+ * which the connectors are worth probing again. */
+int jd_drm_uevent_is_change(const char *msg, size_t len, const char *card);
+
 /* The processes under proc_root (normally /proc) other than self_pid that
  * have `device` open, as "Xorg (pid 812), jade (pid 901)"; their number.
  * Only what this user may see. */

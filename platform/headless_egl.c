@@ -215,5 +215,5 @@ static void headless_close(void *impl)
 
 const jd_platform_ops jd_headless_ops = {
     "headless", NULL, headless_open, headless_size, headless_size, headless_framebuffer, headless_present,
-    headless_poll, headless_stats, headless_describe, headless_close,
+    headless_poll, headless_stats, headless_describe, headless_close, NULL /* no display to read back */
 };

@@ -107,6 +107,14 @@ jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err)
     return jd_read_rgba_flipped(jd_platform_framebuffer(p), w, h, dst, err);
 }
 
+jd_result jd_platform_capture(jd_platform *p, uint8_t *dst, jd_error *err)
+{
+    if (!p->ops->capture)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "the %s platform cannot read back what a display scans out "
+                       "(only drm can, through a writeback connector)", p->ops->kind);
+    return p->ops->capture(p->impl, dst, err);
+}
+
 void jd_platform_close(jd_platform *p)
 {
     if (!p || !p->ops) return;

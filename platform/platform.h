@@ -44,7 +44,8 @@ typedef struct jd_event {
 
 typedef struct jd_present_stats {
     unsigned frames, missed_vblanks; /* missed: flips that took more than one refresh */
-    unsigned flips;                  /* page flips the display confirmed (drm: frames - 1, the first a modeset) */
+    unsigned flips;                  /* page flips the display confirmed (drm: frames - modesets) */
+    unsigned modesets;               /* drm: 1, and one more each time a display came back or changed mode */
     double refresh_hz;
 } jd_present_stats;
 
@@ -60,6 +61,12 @@ unsigned jd_platform_framebuffer(const jd_platform *p);
 jd_result jd_platform_present(jd_platform *p, jd_error *err);
 /* Top-down RGBA8 rows of the frame just drawn (call before present). */
 jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err);
+/* What the display controller scans out now, read back by the display
+ * hardware itself (drm: a writeback connector on the CRTC; the others
+ * have none and say so): top-down RGBA8 rows of jd_platform_size. For
+ * checking a kiosk's screen from afar, not for every frame: on most
+ * drivers it takes a modeset (the connector joins the CRTC) and a wait. */
+jd_result jd_platform_capture(jd_platform *p, uint8_t *dst, jd_error *err);
 /* 1 and an event while there are some; never blocks. */
 int jd_platform_poll(jd_platform *p, jd_event *ev);
 void jd_platform_present_stats(const jd_platform *p, jd_present_stats *st);

@@ -53,6 +53,50 @@ int main(void)
     CHECK(jd_drm_pick_mode(pi_modes, 5, 1600, 900, 0) < 0, "absent size");
     CHECK(jd_drm_pick_mode(pi_modes, 5, 1280, 720, 30) < 0, "absent refresh");
 
+    /* Hotplug, on recorded connector data: the Pi's monitor unplugged, back,
+     * swapped for a 4K one, for a smaller one; a mode asked for that the
+     * new monitor lacks. */
+    int m;
+    jd_drm_connector gone = {HDMIA, 1, 0, 0, NULL}, back = {HDMIA, 1, 1, 5, pi_modes};
+    CHECK(jd_drm_follow_connector(&gone, 0, 1920, 1080, 60, 0, 0, 0, 1920, 1080, &m, why, sizeof why) == JD_DRM_LOST &&
+              strstr(why, "HDMI-A-1: the display went away"),
+          "unplugged: lost (%s)", why);
+    CHECK(jd_drm_follow_connector(&gone, 1, 1920, 1080, 60, 0, 0, 0, 1920, 1080, &m, why, sizeof why) == JD_DRM_KEEP,
+          "still unplugged: nothing more to do or say");
+    CHECK(jd_drm_follow_connector(&back, 1, 1920, 1080, 60, 0, 0, 0, 1920, 1080, &m, why, sizeof why) ==
+                  JD_DRM_MODESET && m == 1 && strstr(why, "is back: 1920x1080@60"),
+          "plugged back: the mode set again (%s)", why);
+    CHECK(jd_drm_follow_connector(&back, 0, 1920, 1080, 60, 0, 0, 0, 1920, 1080, &m, why, sizeof why) == JD_DRM_KEEP,
+          "a hotplug event that changed nothing: keep");
+    static const jd_drm_mode uhd[] = {{3840, 2160, 60, 1}, {2560, 1440, 60, 0}, {1920, 1080, 60, 0}, {1280, 720, 60, 0}};
+    jd_drm_connector big = {HDMIA, 1, 1, 4, uhd};
+    CHECK(jd_drm_follow_connector(&big, 0, 1920, 1080, 60, 0, 0, 0, 1920, 1080, &m, why, sizeof why) == JD_DRM_KEEP,
+          "a 4K monitor for the 1080p one: its 1080p mode, which is in use: keep (%s)", why);
+    CHECK(jd_drm_follow_connector(&big, 0, 1920, 1080, 50, 0, 0, 0, 1920, 1080, &m, why, sizeof why) == JD_DRM_MODESET &&
+              m == 2 && strstr(why, "within the size"),
+          "4K, 1080p50 in use: the largest mode within the budget (%s)", why);
+    static const jd_drm_mode xga[] = {{1024, 768, 60, 1}, {800, 600, 60, 0}};
+    jd_drm_connector small = {HDMIA, 1, 1, 2, xga};
+    CHECK(jd_drm_follow_connector(&small, 0, 1920, 1080, 60, 1920, 1080, 0, 1920, 1080, &m, why, sizeof why) ==
+                  JD_DRM_MODESET && m == 0 && strstr(why, "1024x768@60") && strstr(why, "not offered now"),
+          "a smaller monitor lacking the mode asked for: its preferred (%s)", why);
+    static const jd_drm_mode huge[] = {{7680, 4320, 60, 1}};
+    jd_drm_connector eightk = {HDMIA, 1, 1, 1, huge};
+    CHECK(jd_drm_follow_connector(&eightk, 0, 1920, 1080, 60, 0, 0, 0, 1920, 1080, &m, why, sizeof why) == JD_DRM_LOST &&
+              strstr(why, "fits within 1920x1080"),
+          "nothing within the budget: wait and say so (%s)", why);
+    /* Uevents as the kernel sends them (a real hotplug, and the synthetic
+     * one `echo change > /sys/class/drm/card0/uevent` makes). */
+    static const char hotplug[] = "change@/devices/pci0000:00/0000:00:02.0/drm/card0\0ACTION=change\0"
+                                  "DEVPATH=/devices/pci0000:00/0000:00:02.0/drm/card0\0SUBSYSTEM=drm\0HOTPLUG=1\0"
+                                  "DEVNAME=dri/card0\0DEVTYPE=drm_minor\0SEQNUM=2911\0MAJOR=226\0MINOR=0";
+    CHECK(jd_drm_uevent_is_change(hotplug, sizeof hotplug, "card0"), "a hotplug of card0");
+    CHECK(!jd_drm_uevent_is_change(hotplug, sizeof hotplug, "card1"), "another card's");
+    static const char usb[] = "add@/devices/usb1/1-1\0ACTION=add\0DEVPATH=/devices/usb1/1-1\0SUBSYSTEM=usb\0SEQNUM=5";
+    CHECK(!jd_drm_uevent_is_change(usb, sizeof usb, "card0"), "a USB device");
+    static const char cut[] = "change@/devices/x/drm/card0\0ACTION=change\0SUBSYSTEM=drm\0DEVNAME=dri/car";
+    CHECK(!jd_drm_uevent_is_change(cut, sizeof cut - 1, "card0"), "a message cut short");
+
     jd_drm_master_message("/dev/dri/card0", EACCES, why, sizeof why);
     CHECK(strstr(why, "/dev/dri/card0") && strstr(why, "cannot become DRM master") && strstr(why, "display server"),
           "no master: %s", why);

@@ -1,5 +1,5 @@
 #!/bin/sh
-# jade's kiosk on a real kernel KMS driver: tools/kms-test.sh [JADE]
+# jade's kiosk on a real kernel KMS driver: tools/kms-test.sh [JADE [IMGCMP]]
 #
 # Boots Debian's own kernel in qemu (TCG: no KVM needed) with a busybox
 # initramfs made here, the host's files shared read-only over 9p, and runs
@@ -9,18 +9,22 @@
 # Needs root to install what is missing (qemu-system-x86, linux-image-amd64,
 # linux-headers-amd64, linux-source-6.1, busybox-static, systemd); exits 77
 # with the reason where they cannot be had. The module, the kernel and the
-# initramfs are kept in build-kms/ for the next run.
+# initramfs are kept in build-kms/ for the next run. vkms gets one fix
+# (tools/kms/vkms-writeback-clones.patch) so that its writeback connector
+# can read back what the kiosk shows, compared with IMGCMP (tests/imgcmp).
 set -eu
 here=$(cd "$(dirname "$0")/.." && pwd)
 jade=$(readlink -f "${1:-$here/build/jade}")
+imgcmp=$(readlink -f "${2:-$(dirname "$jade")/tests/imgcmp}")
 work=${JADE_KMS_WORK:-$here/build-kms}
 mkdir -p "$work"
 work=$(cd "$work" && pwd)
 [ -x "$jade" ] || { echo "kms-test: $jade is not built"; exit 1; }
+[ -x "$imgcmp" ] || { echo "kms-test: $imgcmp (tests/imgcmp) is not built"; exit 1; }
 [ "$(uname -m)" = x86_64 ] || { echo "SKIP: kms-test runs on x86_64 hosts"; exit 77; }
 . "$here/tools/apt-source.sh"
 pkgs="qemu-system-x86 linux-image-amd64 linux-headers-amd64 linux-source-6.1 busybox-static systemd udev make gcc bc
-      libelf-dev flex bison xz-utils cpio kmod"
+      libelf-dev flex bison xz-utils cpio kmod patch"
 missing=$("$here/tools/missing-packages.sh" $pkgs)
 if [ -n "$missing" ]; then
     if [ "$(id -u)" -ne 0 ]; then echo "SKIP: kms-test needs:$missing (run as root to install them)"; exit 77; fi
@@ -39,15 +43,18 @@ for v in $(ls /boot | sed -n 's/^vmlinuz-//p' | sort -V); do
     [ -d "/usr/src/linux-headers-$v" ] && [ -d "/lib/modules/$v" ] && kver=$v
 done
 [ -n "$kver" ] || { echo "SKIP: no /boot/vmlinuz-* with its linux-headers"; exit 77; }
-# vkms, out of tree, against that kernel.
-if [ ! -f "$work/vkms-$kver.ko" ]; then
+# vkms, out of tree, against that kernel, with its writeback fix.
+ko=$work/vkms-$kver-wb.ko
+if [ ! -f "$ko" ]; then
     src=$(ls /usr/src/linux-source-*.tar.xz | sort -V | tail -1)
     rm -rf "$work/vkms-src"
     mkdir -p "$work/vkms-src"
     tar -xJf "$src" -C "$work/vkms-src" --strip-components=5 --wildcards '*/drivers/gpu/drm/vkms/*'
+    patch -s -p5 -d "$work/vkms-src" < "$here/tools/kms/vkms-writeback-clones.patch" ||
+        { echo "kms-test: the vkms writeback fix does not apply to $src"; exit 1; }
     make -C "/usr/src/linux-headers-$kver" M="$work/vkms-src" CONFIG_DRM_VKMS=m modules > "$work/vkms-build.log" 2>&1 ||
         { echo "kms-test: vkms does not build against $kver: $(tail -3 "$work/vkms-build.log")"; exit 1; }
-    cp "$work/vkms-src/vkms.ko" "$work/vkms-$kver.ko"
+    cp "$work/vkms-src/vkms.ko" "$ko"
 fi
 cc -O2 -Wall -Wextra "$here/tests/uinput_touch.c" -o "$work/uinput_touch"
 # The initramfs: busybox, the virtio and 9p modules in load order, and an
@@ -74,7 +81,7 @@ mount -t tmpfs run /host/run
 mkdir -p /host/run/jade-out
 mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 out /host/run/jade-out
 echo "GUEST: up in \$(cut -d' ' -f1 /proc/uptime) s"
-chroot /host /bin/sh "$here/tests/kms_guest.sh" "$jade" "$work/vkms-$kver.ko" "$work/uinput_touch" /run/jade-out
+chroot /host /bin/sh "$here/tests/kms_guest.sh" "$jade" "$ko" "$work/uinput_touch" /run/jade-out "$imgcmp"
 sync
 poweroff -f
 EOI
