@@ -13,6 +13,9 @@
 
 #define SH_BLOCK 8
 #define SH_BLOCK_SMALL 2 /* VideoCore IV, Mali-400: see jd_renderer_create */
+/* The irradiance cube map's texels per face side: the SH irradiance is
+ * smooth (order 2), and 16 x 16 per face, bilinearly filtered, carry it. */
+#define IRR_SIZE 16
 #define BLUR_TAPS 4
 /* The full mode's light-space levels: Gaussians of 1, 2, 4, 8 and 16 texels
  * of the first level, one RGBA8 texture each, every second one half the
@@ -41,7 +44,7 @@ static int pot(int n)
 
 typedef struct shade_prog {
     GLuint id;
-    GLint mvp, light_mvp, eye, sh, box_min, box_max, inv_eta, inset;
+    GLint mvp, light_mvp, eye, irr, box_min, box_max, inv_eta, inset;
     GLint light_dir, albedo, light_color, shading, depth, tail, depth_v, tail_v, f0, a0_scale;
     GLint spread, inv_viewport, w0;
     GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls, wl;
@@ -102,9 +105,11 @@ struct jd_renderer {
     GLint depth_mvp, depth_light_dir, depth_f0;
     GLint cap_mvp, cap_light_mvp, cap_light_dir, cap_bias, cap_depth, cap_light_color;
     GLint proj_atlas, proj_texel, rm_src, rm_texel, rf_src, rf_texel, rl_src, rl_texel;
+    GLuint irr_prog; /* the SH result to the irradiance map */
+    GLint irr_src, irr_size, irr_face;
     GLint blur_src, blur_step, blur_inv, blur_scale;
     GLint comb_src, comb_step, comb_inv, comb_a1, comb_w1, comb_w2, comb_scale;
-    target light, atlas, sh1, sh_mid_t, sh2, sh3, spread0, spread_tmp, spread1, spread2;
+    target light, atlas, sh1, sh_mid_t, sh2, sh3, irr[6], spread0, spread_tmp, spread1, spread2;
     target diff_tmp, diff_lv[DIFF_TEXTURES];
     target scene;         /* the frame before anti-aliasing (post_aa only) */
     target wide;          /* full's levels summed at half resolution (without vertex diffusion) */
@@ -119,7 +124,6 @@ struct jd_renderer {
      * at the last frame, so a still scene reuses their results. */
     float light_key[16], view_key[24];
     int light_key_valid, view_key_valid;
-    jd_sh9 last_sh;
 };
 
 const char *jd_mode_name(jd_mode m)
@@ -250,6 +254,34 @@ static jd_result make_target(jd_renderer *r, target *t, int w, int h, int with_d
     GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (st != GL_FRAMEBUFFER_COMPLETE)
         return jd_fail(err, JD_ERR_GL, "%s framebuffer %dx%d is incomplete (0x%x)", what, w, h, st);
+    return JD_OK;
+}
+
+/* A cube map of RGBA8 faces, each its own framebuffer: six targets sharing
+ * one texture (held by the first). Linear filtering, clamped at the edges. */
+static jd_result make_cube_target(jd_renderer *r, target *faces, int size, const char *what, jd_error *err)
+{
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, tex);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    for (int f = 0; f < 6; f++)
+        glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f, 0, GL_RGBA, size, size, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    faces[0].tex = tex;
+    for (int f = 0; f < 6; f++) {
+        target *t = &faces[f];
+        t->w = t->h = t->tw = t->th = size;
+        glGenFramebuffers(1, &t->fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X + f, tex, 0);
+        GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (st != GL_FRAMEBUFFER_COMPLETE)
+            return jd_fail(err, JD_ERR_GL, "%s face %d (%dx%d) is incomplete (0x%x)", what, f, size, size, st);
+    }
+    r->target_bytes += (size_t)6 * size * size * 4;
     return JD_OK;
 }
 
@@ -402,7 +434,7 @@ static void shade_locations(shade_prog *p)
     p->mvp = glGetUniformLocation(id, "u_mvp");
     p->light_mvp = glGetUniformLocation(id, "u_light_mvp");
     p->eye = glGetUniformLocation(id, "u_eye");
-    p->sh = glGetUniformLocation(id, "u_sh");
+    p->irr = glGetUniformLocation(id, "u_irr");
     p->box_min = glGetUniformLocation(id, "u_box_min");
     p->box_max = glGetUniformLocation(id, "u_box_max");
     p->inv_eta = glGetUniformLocation(id, "u_inv_eta");
@@ -467,8 +499,8 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
                  "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n",
                  r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
                  m == JD_MODE_FULL && !r->vertex_diffusion);
-        /* v_pos v_normal v_shadow [v_light] [v_trans] [v_wide] */
-        int varyings = translucent ? (r->vertex_thickness ? 4 : 5) : 3 + (m == JD_MODE_FULL && r->vertex_diffusion);
+        /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_wide] */
+        int varyings = translucent ? (r->vertex_thickness ? 5 : 6) : 3 + (m == JD_MODE_FULL && r->vertex_diffusion);
         if ((res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
                          &r->shade[m].id, err)))
             return res;
@@ -479,7 +511,7 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
              "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL 0\n#define JD_VERTEX_DIFFUSION 0\n"
              "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 0\n",
              r->highp, r->vertex_thickness);
-    if ((res = build(r, r->vertex_thickness ? 4 : 5, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
+    if ((res = build(r, r->vertex_thickness ? 5 : 6, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
                      mesh_attribs, &r->a0.id, err)))
         return res;
     shade_locations(&r->a0);
@@ -536,6 +568,13 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
         return res;
     r->rl_src = glGetUniformLocation(r->reduce_final_prog, "u_src");
     r->rl_texel = glGetUniformLocation(r->reduce_final_prog, "u_src_texel");
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_SRC_W %d.0\n#define JD_SRC_H %d.0\n", r->highp, pot(1),
+             pot(27));
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/irradiance.frag", def, quad_attribs, &r->irr_prog, err)))
+        return res;
+    r->irr_src = glGetUniformLocation(r->irr_prog, "u_src");
+    r->irr_size = glGetUniformLocation(r->irr_prog, "u_size");
+    r->irr_face = glGetUniformLocation(r->irr_prog, "u_face");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 0\n", BLUR_TAPS);
     if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->blur_prog, err))) return res;
     r->blur_src = glGetUniformLocation(r->blur_prog, "u_src");
@@ -678,6 +717,7 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
          (res = make_target(r, &r->sh_mid_t, 6 * nb / r->sh_mid, 27 * nb / r->sh_mid, 0, 0, "SH partial sums", err))) ||
         (res = make_target(r, &r->sh2, 6, 27, 0, 0, "SH reduction", err)) ||
         (res = make_target(r, &r->sh3, 1, 27, 0, 0, "SH result", err)) ||
+        (res = make_cube_target(r, r->irr, IRR_SIZE, "irradiance map", err)) ||
         (res = make_target(r, &r->spread0, sw, shh, 1, 1, "spread A0", err)) ||
         (res = make_target(r, &r->spread_tmp, sw, shh, 0, 1, "spread blur", err)) ||
         (res = make_target(r, &r->spread1, sw, shh, 0, 1, "spread A1", err)) ||
@@ -709,6 +749,7 @@ void jd_renderer_destroy(jd_renderer *r)
                     &r->spread_tmp, &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->wide};
     for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++) free_target(ts[i]);
     for (int i = 0; i < DIFF_TEXTURES; i++) free_target(&r->diff_lv[i]);
+    for (int i = 0; i < 6; i++) free_target(&r->irr[i]); /* the cube's texture goes with the first */
     GLuint bufs[] = {r->mesh_vbo, r->mesh_ibo, r->proxy_vbo, r->proxy_ibo, r->cap_vbo, r->cap_ibo, r->quad_vbo,
                      r->project_vbo};
     glDeleteBuffers(8, bufs);
@@ -717,7 +758,7 @@ void jd_renderer_destroy(jd_renderer *r)
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
     glDeleteProgram(r->wide_prog.id);
     GLuint progs[] = {r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_mid_prog, r->reduce_faces_prog,
-                      r->reduce_final_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id, r->aa_prog};
+                      r->reduce_final_prog, r->irr_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id, r->aa_prog};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
     memset(r, 0, sizeof *r);
 }
@@ -767,7 +808,6 @@ typedef struct frame_params {
     float inv_eta, inset;
     float mm_per_world, blur_sigma_px;
     float light_map[4], shadow_bias[2];
-    jd_sh9 sh;
 } frame_params;
 
 static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f)
@@ -1092,7 +1132,7 @@ static void draw_projection(jd_renderer *r)
     bind_quad(r);
 }
 
-static jd_result pass_sh(jd_renderer *r, frame_params *f, jd_error *err)
+static void pass_sh(jd_renderer *r)
 {
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -1122,14 +1162,25 @@ static jd_result pass_sh(jd_renderer *r, frame_params *f, jd_error *err)
     glUniform2f(r->rl_texel, 1.0f / r->sh2.tw, 1.0f / r->sh2.th);
     glBindTexture(GL_TEXTURE_2D, r->sh2.tex);
     draw_quad_into(r, &r->sh3);
-    /* 27 pixels come back as uniforms for the per-vertex SH evaluation. */
-    uint8_t px[27 * 4];
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, 1, 27, GL_RGBA, GL_UNSIGNED_BYTE, px);
-    r->n_readbacks++;
-    if (glGetError() != GL_NO_ERROR) return jd_fail(err, JD_ERR_GL, "reading back the SH coefficients failed");
-    jd_sh_decode(px, r->highp, &f->sh);
-    return JD_OK;
+    /* The coefficients stay on the GPU: they become the irradiance cube map
+     * the shading pass reads (a read-back here would make a tile-based GPU
+     * finish the frame so far while the CPU waits). Six tiny faces cost a
+     * tiler less than finding a direction's place in a 2D map would cost
+     * every fragment of the main pass: there textureCube does it. */
+    glUseProgram(r->irr_prog);
+    glUniform1i(r->irr_src, 0);
+    glUniform2f(r->irr_size, (float)IRR_SIZE, 2.0f / IRR_SIZE);
+    glBindTexture(GL_TEXTURE_2D, r->sh3.tex);
+    /* Each face's direction at (sc, tc) = axis + sc s + tc t, as GLES 2.0
+     * maps directions to cube faces (its table 3.21). */
+    static const float frames[6][9] = {
+        {1, 0, 0, 0, 0, -1, 0, -1, 0}, {-1, 0, 0, 0, 0, 1, 0, -1, 0}, {0, 1, 0, 1, 0, 0, 0, 0, 1},
+        {0, -1, 0, 1, 0, 0, 0, 0, -1}, {0, 0, 1, 1, 0, 0, 0, -1, 0},  {0, 0, -1, -1, 0, 0, 0, -1, 0},
+    };
+    for (int f = 0; f < 6; f++) {
+        glUniformMatrix3fv(r->irr_face, 1, GL_FALSE, frames[f]);
+        draw_quad_into(r, &r->irr[f]);
+    }
 }
 
 static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const frame_params *f, int w, int h)
@@ -1171,9 +1222,11 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         }
         glActiveTexture(GL_TEXTURE0);
     }
-    if (p->sh >= 0) {
+    if (p->irr >= 0) {
         float hb = r->box_half;
-        glUniform3fv(p->sh, 9, &f->sh.c[0][0]);
+        glUniform1i(p->irr, 2);
+        glActiveTexture(GL_TEXTURE2);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, r->irr[0].tex);
         glUniform3f(p->box_min, -hb, -hb, -hb);
         glUniform3f(p->box_max, hb, hb, hb);
         glUniform1f(p->inv_eta, f->inv_eta);
@@ -1473,19 +1526,12 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     }
     if (s->mode == JD_MODE_SINGLE || s->mode == JD_MODE_DUAL) {
         update_tail(r, s, &f);
-        if (light_still) {
-            f.sh = r->last_sh;
-        } else {
+        if (!light_still) { /* else the irradiance map is as it was */
             gpu_begin(r, stats, JD_PASS_CAPTURE);
             pass_capture(r, &f);
             lap(r, stats, JD_PASS_CAPTURE, &t);
             gpu_begin(r, stats, JD_PASS_SH);
-            jd_result res = pass_sh(r, &f, err);
-            if (res) {
-                if (r->tq.ok && r->tq.used[JD_PASS_SH]) r->tq.end(GL_TIME_ELAPSED_EXT);
-                return res;
-            }
-            r->last_sh = f.sh;
+            pass_sh(r);
             lap(r, stats, JD_PASS_SH, &t);
         }
         if (s->mode == JD_MODE_DUAL && !view_still) {
@@ -1500,7 +1546,6 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
     lap(r, stats, JD_PASS_MAIN, &t);
     gpu_collect(r, stats);
     if (stats) {
-        memcpy(stats->sh, f.sh.c, sizeof stats->sh);
         stats->blur_sigma_px = f.blur_sigma_px;
         stats->target_switches = r->n_switches;
         stats->readbacks = r->n_readbacks;

@@ -94,7 +94,6 @@ typedef struct jd_frame_stats {
     double pass_ms[JD_PASS_COUNT]; /* CPU wall time per pass (with desc.timing) */
     double gpu_ms[JD_PASS_COUNT];  /* GPU time per pass, when gpu_valid */
     int gpu_valid;
-    float sh[9][3];                /* coefficients used this frame */
     float blur_sigma_px;           /* spread width in low-res pixels */
     /* What the frame costs a tile-based GPU, counted by the renderer:
      * render-target switches (each writes the tile memory out), read-backs

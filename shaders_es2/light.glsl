@@ -78,3 +78,4 @@ vec3 jd_diffused(sampler2D lv0, sampler2D lv1, sampler2D lv2, sampler2D lv3, sam
                           + w[3] * jd_level(texture2D(lv3, p.xy), p, s[1].x, slack, lit)
                           + w[4] * jd_level(texture2D(lv4, p.xy), p, s[1].y, slack, lit));
 }
+

@@ -1,8 +1,7 @@
 #version 100
-// Shared vertex stage of the shading passes. The SH irradiance along the
-// parallax-corrected refraction direction is evaluated here, per vertex: it is
-// low-frequency, and keeping the nine SH vectors out of the fragment shader
-// fits devices with only 16 fragment uniform vectors.
+// Shared vertex stage of the shading passes. The parallax-corrected
+// refraction direction is found here, per vertex; the fragment stage looks
+// the SH irradiance up along it in the map the reduction left on the GPU.
 attribute vec3 a_position;
 attribute vec3 a_normal;
 uniform mat4 u_mvp;
@@ -35,7 +34,6 @@ uniform vec3 u_ls[2];
 varying vec3 v_wide;
 #endif
 #if JD_TRANSLUCENT
-uniform vec3 u_sh[9];
 uniform vec3 u_box_min;
 uniform vec3 u_box_max;
 uniform float u_inv_eta;
@@ -52,16 +50,8 @@ uniform sampler2D u_tail_v;
 #else
 varying vec3 v_light;
 #endif
-varying vec3 v_trans;        // A0 but the thickness term (all of A0 per vertex)
-
-vec3 sh_irradiance(vec3 n)
-{
-    const float c1 = 0.429043, c2 = 0.511664, c3 = 0.743125, c4 = 0.886227, c5 = 0.247708;
-    return c1 * u_sh[8] * (n.x * n.x - n.y * n.y) + c3 * u_sh[6] * n.z * n.z + c4 * u_sh[0]
-         - c5 * u_sh[6]
-         + 2.0 * c1 * (u_sh[4] * n.x * n.y + u_sh[7] * n.x * n.z + u_sh[5] * n.y * n.z)
-         + 2.0 * c2 * (u_sh[3] * n.x + u_sh[1] * n.y + u_sh[2] * n.z);
-}
+varying vec3 v_trans;        // A0 but the irradiance and (per fragment) the thickness term
+varying vec3 v_dir;          // where the irradiance is looked up
 #endif
 
 void main()
@@ -102,11 +92,11 @@ void main()
     vec3 s2 = (u_box_min - a_position) / r;
     vec3 sf = max(s1, s2);
     float s = min(min(sf.x, sf.y), sf.z);
-    vec3 d = normalize(a_position + s * r);
+    v_dir = a_position + s * r; // the lookup normalises
     float x = clamp(1.0 - dot(n, view), 0.0, 1.0);
     float x2 = x * x;
     float ft = 1.0 - (u_f0 + (1.0 - u_f0) * x2 * x2 * x); // Fresnel transmittance
-    v_trans = ft * u_a0_scale * max(sh_irradiance(d), vec3(0.0));
+    v_trans = ft * u_a0_scale;
 #if JD_VERTEX_THICKNESS
     float t = clamp(light.z - jd_unpack(texture2DLod(u_depth_v, light.xy, 0.0)), 0.0, 1.0);
     vec3 m = texture2DLod(u_tail_v, vec2(t, 0.5), 0.0).rgb;

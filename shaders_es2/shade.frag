@@ -23,6 +23,8 @@ uniform sampler2D u_tail;    // sqrt of the dipole tail M(t)/M-scale, t across [
 varying vec3 v_light;
 #endif
 varying vec3 v_trans;
+varying vec3 v_dir;
+uniform samplerCube u_irr;   // the SH irradiance by direction, RGBM: rgb * a * 4 (irradiance.frag)
 #endif
 #if JD_SPREAD || JD_WIDE_BUFFER
 uniform vec2 u_inv_viewport; // screen position to the used corner of the low-resolution layer
@@ -60,13 +62,15 @@ uniform vec3 u_ls[2];        // per level: depth units to sigma_k sqrt(2), level
 // more than the rest of the shader on small GPUs).
 vec3 translucency()
 {
+    vec4 e = textureCube(u_irr, v_dir);
+    vec3 trans = v_trans * e.rgb * (e.a * 4.0);
 #if JD_VERTEX_THICKNESS
-    return v_trans;
+    return trans;
 #else
     float shadow = jd_unpack(texture2D(u_depth, v_light.xy));
     float t = clamp(v_light.z - shadow, 0.0, 1.0);
     vec3 m = texture2D(u_tail, vec2(t, 0.5)).rgb;
-    return 2.0 * m * m * v_trans;
+    return 2.0 * m * m * trans;
 #endif
 }
 #endif

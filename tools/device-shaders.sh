@@ -140,10 +140,18 @@ cat "$table"
 case $mode in
     update) cp "$table" "$expected"; echo "device-shaders: wrote $expected" ;;
     check)
+        # Programs are matched by driver and name, not by their place in the
+        # list (a program added in the middle must not make every later one
+        # "new"); a name that repeats counts its occurrences.
         awk '
-            NR == FNR { key = $1 " " $2; want_vs[key] = $4; want_fs[key] = $6; want_sp[key] = $8; next }
+            function name(drv, prog,   n) {
+                sub(/^[0-9]+:/, "", prog)
+                n = ++seen[FILENAME, drv, prog]
+                return drv " " prog (n > 1 ? " #" n : "")
+            }
+            NR == FNR { key = name($1, $2); want_vs[key] = $4; want_fs[key] = $6; want_sp[key] = $8; next }
             {
-                key = $1 " " $2; st = $NF
+                key = name($1, $2); st = $NF
                 if (st != "ok") { print "device-shaders: " key ": " st; bad = 1; next }
                 if (!(key in want_fs)) { print "device-shaders: " key ": new program (update the table)"; next }
                 if (want_vs[key] != "-" && $4 > want_vs[key] * 1.1) { print "device-shaders: " key ": VS " want_vs[key] " -> " $4 " instructions (over 10%)"; bad = 1 }
