@@ -54,7 +54,7 @@ typedef struct shade_prog {
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */
 typedef struct diff_prog {
     GLuint id;
-    GLint src, ref, ref_scale, step, inv_2s2, uv_scale, near;
+    GLint src, ref, ref_scale, step, w, uv_scale, near;
 } diff_prog;
 
 #define TAIL_SIZE 256
@@ -480,7 +480,7 @@ static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_err
     p->ref = glGetUniformLocation(p->id, "u_ref");
     p->ref_scale = glGetUniformLocation(p->id, "u_ref_scale");
     p->step = glGetUniformLocation(p->id, "u_step");
-    p->inv_2s2 = glGetUniformLocation(p->id, "u_inv_2s2");
+    p->w = glGetUniformLocation(p->id, "u_w");
     p->uv_scale = glGetUniformLocation(p->id, "u_uv_scale");
     p->near = glGetUniformLocation(p->id, "u_near");
     return JD_OK;
@@ -1361,7 +1361,9 @@ static void pass_diffusion(jd_renderer *r, const frame_params *f)
             glUniform2f(p->ref_scale, 1.0f / (float)to->w, 1.0f / (float)to->h);
             glUniform2f(p->uv_scale, (float)from->w / from->tw, (float)from->h / from->th);
             glUniform2f(p->step, pass ? 0.0f : step / (float)from->tw, pass ? step / (float)from->th : 0.0f);
-            glUniform1f(p->inv_2s2, 1.0f / (2.0f * st * st));
+            float w[DIFF_TAPS + 1];
+            for (int i = 0; i <= DIFF_TAPS; i++) w[i] = expf(-(float)(i * i) / (2.0f * st * st));
+            glUniform1fv(p->w, DIFF_TAPS + 1, w);
             glUniform1f(p->near, near);
             glBindTexture(GL_TEXTURE_2D, from->tex);
             draw_quad_into(r, to);

@@ -17,19 +17,10 @@ uniform sampler2D u_src;
 uniform sampler2D u_ref;    // the light-depth map: each texel's own lit surface
 uniform vec2 u_ref_scale;   // fragment coordinates to the light map's
 uniform vec2 u_step;        // texel offset between taps, along the blur direction
-uniform float u_inv_2s2;    // 1 / (2 sigma^2), sigma in taps
+uniform float u_w[JD_TAPS + 1]; // the Gaussian's weight 0, 1, ... taps away: an exp per tap
+                            // and fragment kept more of lima's registers busy
 uniform float u_near;       // light-depth units that still count as this texel's surface
 varying vec2 v_uv;
-
-vec4 acc_n, acc_f;          // sum of w S and w S z, near and far
-
-void add(float w, float e, float z, float zr)
-{
-    if (z < 0.999) {
-        vec2 v = w * e * e * vec2(1.0, z);
-        if (abs(z - zr) < u_near) acc_n.xy += v; else acc_f.xy += v;
-    }
-}
 
 // sqrt(S) and the mean depth of a part; `other`, the depth to give it where
 // it holds no light: filtering between texels must not see a depth that no
@@ -42,8 +33,10 @@ vec2 part(vec2 a, float wsum, float other)
 void main()
 {
     float zr = jd_unpack(texture2D(u_ref, gl_FragCoord.xy * u_ref_scale));
-    acc_n = vec4(0.0);
-    acc_f = vec4(0.0);
+    // Without branches, whole-vector sums: near w S, near w S z, far w S,
+    // far w S z. (Written first with a branch per part and an exp per tap,
+    // lima took 594 instructions and spilled 75:343; vc4 1,336.)
+    vec4 acc = vec4(0.0);
     // Normalised convolution on the light's coverage: near the object's
     // outline as the light sees it there is lit surface on one side and
     // nothing (not dark surface) on the other.
@@ -51,23 +44,25 @@ void main()
     for (int i = -JD_TAPS; i <= JD_TAPS; i++) {
         float x = float(i);
         vec4 t = texture2D(u_src, v_uv + x * u_step);
-        float w = exp(-x * x * u_inv_2s2);
+        float w = u_w[i < 0 ? -i : i];
 #if JD_FIRST
         float z = jd_unpack(t);
-        add(w, t.a, z, zr);
-        wsum += z < 0.999 ? w : 0.0;
+        float ws = w * t.a * t.a * step(z, 0.998), wn = ws * step(abs(z - zr), u_near);
+        acc += vec4(wn, wn * z, ws - wn, (ws - wn) * z);
+        wsum += w * step(z, 0.998);
 #else
-        add(w, t.r, t.g, zr);
-        add(w, t.b, t.a, zr);
-        wsum += min(t.g, t.a) < 0.999 ? w : 0.0;
+        float ws1 = w * t.r * t.r * step(t.g, 0.998), wn1 = ws1 * step(abs(t.g - zr), u_near);
+        float ws2 = w * t.b * t.b * step(t.a, 0.998), wn2 = ws2 * step(abs(t.a - zr), u_near);
+        acc += vec4(wn1 + wn2, wn1 * t.g + wn2 * t.a, ws1 - wn1 + ws2 - wn2, (ws1 - wn1) * t.g + (ws2 - wn2) * t.a);
+        wsum += w * step(min(t.g, t.a), 0.998);
 #endif
     }
     if (wsum <= 0.0) {
         gl_FragColor = vec4(0.0, 1.0, 0.0, 1.0);
     } else {
-        float zn = acc_n.x > 0.0001 * wsum ? acc_n.y / acc_n.x : zr;
-        float zf = acc_f.x > 0.0001 * wsum ? acc_f.y / acc_f.x : zn;
-        vec2 n = part(acc_n.xy, wsum, clamp(zf, 0.0, 0.998)), f = part(acc_f.xy, wsum, clamp(zn, 0.0, 0.998));
+        float zn = acc.x > 0.0001 * wsum ? acc.y / acc.x : zr;
+        float zf = acc.z > 0.0001 * wsum ? acc.w / acc.z : zn;
+        vec2 n = part(acc.xy, wsum, clamp(zf, 0.0, 0.998)), f = part(acc.zw, wsum, clamp(zn, 0.0, 0.998));
         gl_FragColor = n.y <= f.y ? vec4(n, f) : vec4(f, n);
     }
 }
