@@ -151,23 +151,25 @@ int jd_cmd_bench(int argc, char **argv)
     if (jd_renderer_frame(s.renderer, &first, NULL, &err)) { fprintf(stderr, "jade bench: %s\n", err.msg); jd_session_close(&s); return 1; }
     jd_renderer_finish(s.renderer);
     double ttff = jd_now_ms() - s.t_start_ms;
+    jd_renderer_info info;
+    jd_renderer_get_info(s.renderer, &info);
 
     printf("{\n  \"mesh\": ");
     jd_json_string(stdout, s.mesh_path);
     printf(", \"triangles\": %u, \"vertices\": %u, \"proxy_triangles\": %u,\n", s.mesh.num_indices / 3,
-           s.mesh.num_vertices, jd_renderer_proxy(s.renderer)->num_indices / 3);
+           s.mesh.num_vertices, info.proxy->num_indices / 3);
     printf("  \"size\": \"%dx%d\", \"frames\": %d, \"material\": ", o.width, o.height, o.frames);
     jd_json_string(stdout, o.material);
     printf(", \"cube_size\": %d, \"precision\": \"%s\",\n  \"gl_renderer\": ",
-           o.rdesc.cube_size ? o.rdesc.cube_size : 64, jd_renderer_highp(s.renderer) ? "highp" : "mediump");
+           o.rdesc.cube_size ? o.rdesc.cube_size : 64, info.highp ? "highp" : "mediump");
     jd_json_string(stdout, s.caps.renderer);
     printf(", \"platform\": ");
     jd_json_string(stdout, jd_platform_describe(s.platform));
-    printf(", \"gpu_timer_query\": %s,\n", jd_renderer_has_gpu_timer(s.renderer) ? "true" : "false");
+    printf(", \"gpu_timer_query\": %s,\n", info.gpu_timer ? "true" : "false");
     printf("  \"time_to_first_frame_ms\": %.1f, \"draco_decode_ms\": %.2f, \"file_bytes\": %zu,\n", ttff,
            s.load.decode_ms, s.load.file_bytes);
     printf("  \"arena_budget_bytes\": %zu, \"arena_peak_bytes\": %zu, \"render_target_bytes\": %zu,\n", s.arena.size,
-           s.arena.peak, jd_renderer_target_bytes(s.renderer));
+           s.arena.peak, info.target_bytes);
     if (o.cycle_materials) {
         /* A soak: every mode's programs and targets made once before the
          * first health line, so later growth is growth, not set-up. */

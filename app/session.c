@@ -236,8 +236,10 @@ void jd_session_close(jd_session *s)
 const char *jd_antialias_describe(const jd_renderer *r)
 {
     static char line[96];
-    int samples = jd_renderer_target_samples(r);
-    if (jd_renderer_post_antialias(r))
+    jd_renderer_info info;
+    jd_renderer_get_info(r, &info);
+    int samples = info.target_samples;
+    if (info.post_antialias)
         snprintf(line, sizeof line, "anti-aliasing: a pass after the frame (the target has no multisampling)");
     else if (samples > 1)
         snprintf(line, sizeof line, "anti-aliasing: %dx multisampling in the target", samples);

@@ -134,6 +134,9 @@ static int load_file_uri(gltf *g, int i, const char *uri, size_t need, blob *b)
 {
     if (uri[0] == '/' || strstr(uri, "..") || strchr(uri, '\\') || strchr(uri, ':') || strchr(uri, '%'))
         return fail(g, "glTF buffer %d: uri '%.200s' is not a plain relative file name; refused", i, uri);
+    if (!g->path)
+        return fail(g, "glTF buffer %d: uri '%.200s' names a file, but the glTF came from memory; embed the "
+                       "buffer (GLB, or a data: URI)", i, uri);
     char full[8192];
     const char *slash = strrchr(g->path, '/');
     int dir = slash ? (int)(slash - g->path + 1) : 0;

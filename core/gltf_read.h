@@ -22,8 +22,9 @@ typedef struct jd_gltf_limits {
  * placed by its node transforms, merged into one mesh. Normals and texture
  * coordinates are kept where every primitive has them. A material's
  * extras.jade_material names a jade material (out->material). External
- * buffers are read from beside `path` (relative names without ".."); 0, or
- * -1 with a reason in err. */
+ * buffers are read from beside `path` (relative names without ".."; with
+ * path NULL, a glTF read from memory, they are refused); 0, or -1 with a
+ * reason in err. */
 int jd_gltf_read(const uint8_t *buf, size_t n, const char *path, const jd_gltf_limits *lim, jd_mesh_arrays *out,
                  char *err, size_t errlen);
 

@@ -1,4 +1,5 @@
-/* jade's public interface: include this one header.
+/* jade's public interface: #include <jade/jade.h> (the platforms, from the
+ * jade-platform library: <jade/platform.h>).
  *
  * Typical use: give the core one memory budget (jd_arena_init), load a Draco
  * mesh before any GL context exists (jd_mesh_load_draco forks a sandboxed

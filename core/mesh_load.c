@@ -77,7 +77,7 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
     if (d->format == JD_FORMAT_GLTF) {
 #ifdef JD_HAVE_CJSON
         jd_gltf_limits lim = {d->max_vertices, d->max_faces, d->max_file_bytes};
-        rc = jd_gltf_read(buf, n, d->path, &lim, &m, msg, sizeof msg);
+        rc = jd_gltf_read(buf, n, d->data ? NULL : d->path, &lim, &m, msg, sizeof msg);
 #else
         snprintf(msg, sizeof msg, "this jade was built without libcjson, so it cannot read glTF");
         rc = -1;
@@ -123,6 +123,19 @@ static jd_result read_exact(reader *r, void *dst, size_t n, int *eof, jd_error *
         p += got;
         n -= (size_t)got;
     }
+    return JD_OK;
+}
+
+/* The caller's bytes, into the arena where the file would have gone. */
+static jd_result copy_data(const jd_load_desc *d, jd_arena *a, uint8_t **buf, size_t *n, jd_error *err)
+{
+    if (d->size > d->max_file_bytes)
+        return jd_fail(err, JD_ERR_LIMIT, "%s: %zu bytes, over the limit of %zu", d->path, d->size, d->max_file_bytes);
+    uint8_t *p = jd_arena_alloc_top(a, d->size ? d->size : 1, 16, "the mesh data", err);
+    if (!p) return JD_ERR_BUDGET;
+    memcpy(p, d->data, d->size);
+    *buf = p;
+    *n = d->size;
     return JD_OK;
 }
 
@@ -195,7 +208,8 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
                              jd_load_stats *stats, jd_error *err)
 {
     jd_load_desc d = *desc;
-    if (!d.path) return jd_fail(err, JD_ERR_ARG, "no mesh path given");
+    if (!d.path && !d.data) return jd_fail(err, JD_ERR_ARG, "no mesh path or data given");
+    if (!d.path) d.path = "the mesh in memory";
     if (!d.max_file_bytes) d.max_file_bytes = 64u << 20;
     if (!d.max_vertices) d.max_vertices = 4000000;
     if (!d.max_faces) d.max_faces = 4000000;
@@ -207,7 +221,7 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
     size_t top = jd_arena_top_mark(a), bottom = jd_arena_mark(a);
     uint8_t *buf = NULL;
     size_t n = 0;
-    jd_result r = read_file(&d, a, &buf, &n, err);
+    jd_result r = d.data ? copy_data(&d, a, &buf, &n, err) : read_file(&d, a, &buf, &n, err);
     if (r) return r;
     st.file_bytes = n;
 

@@ -13,7 +13,10 @@ extern "C" {
 
 /* Zero fields take the defaults in brackets. */
 typedef struct jd_load_desc {
-    const char *path;
+    const char *path;           /* the file; with data, only the name used in messages ["the mesh in memory"] */
+    const void *data;           /* or the file's bytes, from the caller's own asset system: a glTF
+                                   read from memory must carry its buffers (GLB or data: URIs) */
+    size_t size;                /* bytes at data */
     size_t max_file_bytes;      /* [64 MiB] */
     uint32_t max_vertices;      /* [4,000,000] */
     uint32_t max_faces;         /* [4,000,000] */
@@ -32,7 +35,9 @@ typedef struct jd_load_stats {
     char material[32];  /* a jade material the file names (glTF extras.jade_material), or "" */
 } jd_load_stats;
 
-/* libdraco runs in a child process under an address-space and CPU limit and a
+/* Reads desc->path, or desc->size bytes at desc->data (copied into the
+ * arena first: the caller's buffer is never written and may go once this
+ * returns). libdraco runs in a child process under an address-space and CPU limit and a
  * wall-clock deadline; its output streams back through a pipe straight into
  * the arena, and is validated (indices, finite positions) before anyone sees
  * it. Call before creating threads (a GL context): the child forks. */

@@ -73,6 +73,7 @@ typedef struct timer_query {
 struct jd_renderer {
     jd_renderer_desc d;
     int highp;
+    int timing; /* jd_renderer_set_timing */
     int vertex_thickness; /* thickness read in the vertex stage */
     int vertex_diffusion; /* the full mode's levels summed in the vertex stage */
     int target_samples;   /* GL_SAMPLES of the platform's target */
@@ -606,25 +607,44 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
 
 static jd_result build_projection_quads(jd_renderer *r, jd_arena *a, jd_error *err);
 
-jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer **out, jd_error *err)
+void jd_renderer_desc_defaults(jd_renderer_desc *d)
 {
-    if (!desc->mesh || !desc->caps) return jd_fail(err, JD_ERR_ARG, "renderer needs a mesh and the GL caps");
-    jd_renderer *r = jd_arena_alloc(a, sizeof *r, 16, "renderer", err);
-    if (!r) return JD_ERR_BUDGET;
-    r->d = *desc;
-    jd_renderer_desc *d = &r->d;
     if (d->width <= 0) d->width = 512;
     if (d->height <= 0) d->height = 512;
     if (d->max_width < d->width) d->max_width = d->width;
     if (d->max_height < d->height) d->max_height = d->height;
-    if (d->rotation != 0 && d->rotation != 90 && d->rotation != 180 && d->rotation != 270)
-        return jd_fail(err, JD_ERR_ARG, "rotation %d must be 0, 90, 180 or 270", d->rotation);
     if (!d->cube_size) d->cube_size = 64;
     if (!d->light_map_size) d->light_map_size = 256;
     if (!d->proxy_cells) d->proxy_cells = 40;
     if (!d->capture_cells) d->capture_cells = 24;
     if (!d->spread_divisor) d->spread_divisor = 8;
     if (!d->diffusion_size) d->diffusion_size = d->light_map_size / 4;
+}
+
+static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer **out, jd_error *err);
+
+jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer **out, jd_error *err)
+{
+    /* A failed create gives the arena back as it found it. */
+    size_t bottom = jd_arena_mark(a), top = jd_arena_top_mark(a);
+    jd_result r = create(desc, a, out, err);
+    if (r) {
+        jd_arena_reset(a, bottom);
+        jd_arena_top_reset(a, top);
+    }
+    return r;
+}
+
+static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer **out, jd_error *err)
+{
+    if (!desc->mesh || !desc->caps) return jd_fail(err, JD_ERR_ARG, "renderer needs a mesh and the GL caps");
+    jd_renderer *r = jd_arena_alloc(a, sizeof *r, 16, "renderer", err);
+    if (!r) return JD_ERR_BUDGET;
+    r->d = *desc;
+    jd_renderer_desc *d = &r->d;
+    jd_renderer_desc_defaults(d);
+    if (d->rotation != 0 && d->rotation != 90 && d->rotation != 180 && d->rotation != 270)
+        return jd_fail(err, JD_ERR_ARG, "rotation %d must be 0, 90, 180 or 270", d->rotation);
     /* The SH projection sums a block of capture texels per pixel; 8x8 is
      * more than the register files of VideoCore IV (vc4 cannot allocate it)
      * and Mali-400 (lima spills 33 values) hold, so those take 2x2 blocks
@@ -763,9 +783,8 @@ void jd_renderer_destroy(jd_renderer *r)
     memset(r, 0, sizeof *r);
 }
 
-size_t jd_renderer_target_bytes(const jd_renderer *r) { return r->target_bytes; }
 void jd_renderer_finish(jd_renderer *r) { (void)r; glFinish(); }
-void jd_renderer_set_timing(jd_renderer *r, int on) { r->d.timing = on; }
+void jd_renderer_set_timing(jd_renderer *r, int on) { r->timing = on; }
 
 jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *err)
 {
@@ -786,12 +805,16 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
     }
     return JD_OK;
 }
-int jd_renderer_highp(const jd_renderer *r) { return r->highp; }
-int jd_renderer_vertex_thickness(const jd_renderer *r) { return r->vertex_thickness; }
-int jd_renderer_has_gpu_timer(const jd_renderer *r) { return r->tq.ok; }
-int jd_renderer_target_samples(const jd_renderer *r) { return r->target_samples; }
-int jd_renderer_post_antialias(const jd_renderer *r) { return r->post_aa; }
-const jd_mesh *jd_renderer_proxy(const jd_renderer *r) { return &r->proxy; }
+void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
+{
+    info->target_bytes = r->target_bytes;
+    info->highp = r->highp;
+    info->vertex_thickness = r->vertex_thickness;
+    info->gpu_timer = r->tq.ok;
+    info->target_samples = r->target_samples;
+    info->post_antialias = r->post_aa;
+    info->proxy = &r->proxy;
+}
 
 /* ---- per frame ---------------------------------------------------------- */
 
@@ -1450,7 +1473,7 @@ static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params
 
 static void gpu_begin(jd_renderer *r, jd_frame_stats *st, int pass)
 {
-    if (r->d.timing && st && r->tq.ok) {
+    if (r->timing && st && r->tq.ok) {
         r->tq.begin(GL_TIME_ELAPSED_EXT, r->tq.q[pass]);
         r->tq.used[pass] = 1;
     }
@@ -1458,7 +1481,7 @@ static void gpu_begin(jd_renderer *r, jd_frame_stats *st, int pass)
 
 static void lap(jd_renderer *r, jd_frame_stats *st, int pass, double *t)
 {
-    if (!r->d.timing || !st) return;
+    if (!r->timing || !st) return;
     if (r->tq.ok && r->tq.used[pass]) r->tq.end(GL_TIME_ELAPSED_EXT);
     glFinish();
     double now = jd_clock_ms();
@@ -1470,7 +1493,7 @@ static void lap(jd_renderer *r, jd_frame_stats *st, int pass, double *t)
  * event (the GPU clock was disturbed) invalidates the whole frame. */
 static void gpu_collect(jd_renderer *r, jd_frame_stats *st)
 {
-    if (!r->d.timing || !st || !r->tq.ok) return;
+    if (!r->timing || !st || !r->tq.ok) return;
     GLint disjoint = 0;
     glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
     st->gpu_valid = !disjoint;

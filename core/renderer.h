@@ -26,12 +26,13 @@ typedef enum jd_antialias { JD_AA_AUTO = 0, JD_AA_OFF, JD_AA_POST } jd_antialias
 const char *jd_mode_name(jd_mode m);
 int jd_mode_parse(const char *s, jd_mode *out);
 
-/* Zero fields take the defaults in brackets. */
+/* Zero fields take the defaults in brackets (jd_renderer_desc_defaults
+ * writes them in); mesh and caps are the caller's. */
 typedef struct jd_renderer_desc {
     const jd_mesh *mesh;
     const jd_gl_caps *caps;
-    unsigned target_fbo;  /* where frames go (the platform's) */
-    int width, height;
+    unsigned target_fbo;  /* where frames go: the caller's framebuffer object [0, the window] */
+    int width, height;    /* [512 x 512] */
     int max_width, max_height; /* [width x height] the largest jd_renderer_resize may ask */
     int rotation;         /* 0, 90, 180 or 270 degrees: portrait panels, applied in the projection */
     int cube_size;        /* [64] texels per capture face, a multiple of 8 */
@@ -45,7 +46,6 @@ typedef struct jd_renderer_desc {
     int no_cull;          /* draw back faces too (open meshes) */
     int fragment_thickness; /* read thickness per fragment even where the
                                vertex stage could (coarse meshes) */
-    int timing;           /* glFinish after each pass to time it */
     /* Looks up GL extension entry points (the platform's); with it and
      * GL_EXT_disjoint_timer_query, timed frames also get GPU pass times. */
     void *(*get_proc)(const char *name);
@@ -91,7 +91,7 @@ enum { JD_PASS_LIGHT_DEPTH, JD_PASS_CAPTURE, JD_PASS_SH, JD_PASS_SPREAD, JD_PASS
 const char *jd_pass_name(int pass);
 
 typedef struct jd_frame_stats {
-    double pass_ms[JD_PASS_COUNT]; /* CPU wall time per pass (with desc.timing) */
+    double pass_ms[JD_PASS_COUNT]; /* CPU wall time per pass (with jd_renderer_set_timing) */
     double gpu_ms[JD_PASS_COUNT];  /* GPU time per pass, when gpu_valid */
     int gpu_valid;
     float blur_sigma_px;           /* spread width in low-res pixels */
@@ -106,27 +106,53 @@ typedef struct jd_frame_stats {
 
 typedef struct jd_renderer jd_renderer;
 
+/* Writes the default into every field of d left at zero: on a zeroed
+ * descriptor, the defaults themselves (the values in brackets above). */
+void jd_renderer_desc_defaults(jd_renderer_desc *d);
+
+/* Every GL object (programs, textures, framebuffers, buffers) is made here,
+ * in the context current on this thread, and every byte comes from the
+ * arena. On failure nothing is left behind: the GL objects are deleted and
+ * the arena is as it was. */
 jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer **out,
                              jd_error *err);
+/* One frame into desc.target_fbo. No read-back, no glFinish, no heap.
+ *
+ * GL state it sets and leaves so (a caller drawing more in the same context
+ * sets these again for itself): the bound framebuffer (target_fbo at the
+ * end), viewport and scissor box (the frame's size), the current program,
+ * the array and element array buffers, vertex attribute arrays 0-4 (their
+ * pointers and enables), the 2D and cube map textures bound on units 0-6
+ * (unit 0 active at the end), depth test and face culling (on or off as
+ * its last pass needed), the scissor test (on), dither (off) and the clear
+ * colour. It expects, and does not set, the rest at GL's defaults:
+ * blending off, depth function GL_LESS, colour and depth writes on, front
+ * faces counter-clockwise, back faces culled, stencil test off. */
 jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *stats,
                             jd_error *err);
+/* Deletes the GL objects (the context must be current); the arena's bytes
+ * are the caller's to reset. */
 void jd_renderer_destroy(jd_renderer *r);
-/* Waits for the GPU: frame timing and readback boundaries. */
+/* Waits for the GPU (glFinish): for timing whole frames, never inside one. */
 void jd_renderer_finish(jd_renderer *r);
-/* glFinish after each pass, recording CPU times in jd_frame_stats. */
+/* glFinish after each pass, recording CPU (and, where timer queries exist,
+ * GPU) times per pass in jd_frame_stats: for bench, not for a kiosk. */
 void jd_renderer_set_timing(jd_renderer *r, int on);
 /* A new drawable size within desc.max_width x max_height: only viewports
  * change, nothing is reallocated. */
 jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *err);
 
-size_t jd_renderer_target_bytes(const jd_renderer *r);
-int jd_renderer_highp(const jd_renderer *r);
-int jd_renderer_vertex_thickness(const jd_renderer *r);
-int jd_renderer_has_gpu_timer(const jd_renderer *r);
-/* The target's samples per pixel, and whether the post-process pass runs. */
-int jd_renderer_target_samples(const jd_renderer *r);
-int jd_renderer_post_antialias(const jd_renderer *r);
-const jd_mesh *jd_renderer_proxy(const jd_renderer *r);
+/* What a renderer chose for this device, and what it holds. */
+typedef struct jd_renderer_info {
+    size_t target_bytes;      /* render targets' memory on the GPU */
+    int highp;                /* SH packing: 1 three bytes (fragment highp), 0 two (mediump) */
+    int vertex_thickness;     /* thickness read per vertex (vertex texture units), else per fragment */
+    int gpu_timer;            /* GL_EXT_disjoint_timer_query: per-pass GPU times with timing on */
+    int target_samples;       /* samples per pixel of the target (GL_SAMPLES) */
+    int post_antialias;       /* the anti-aliasing pass runs after each frame */
+    const jd_mesh *proxy;     /* the coarse mesh the light-space passes draw */
+} jd_renderer_info;
+void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info);
 /* Reads back the last frame's capture atlas (3N x 2N RGBA8, rows bottom-up)
  * and the 27 packed SH pixels, for tests against the CPU reference. */
 jd_result jd_renderer_read_capture(jd_renderer *r, uint8_t *atlas, uint8_t *sh27, int *n,

@@ -36,5 +36,24 @@ if command -v c++ >/dev/null; then
         fail=$((fail + 1)); echo "FAIL C++"; cat "$tmp/log"
     fi
 fi
+# examples/embed.c, the README's embedding: its own EGL context, the mesh
+# from memory; as C through find_package(jade) and as C++ through pkg-config.
+ex=$src/../examples
+if cmake -S "$ex" -B "$tmp/ex" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_C_FLAGS="$san" \
+       -DCMAKE_EXE_LINKER_FLAGS="$san" >"$tmp/log" 2>&1 && cmake --build "$tmp/ex" >>"$tmp/log" 2>&1 &&
+   "$tmp/ex/embed" "$mesh" >"$tmp/out" 2>&1 && grep -q "^embed: " "$tmp/out"; then
+    pass=$((pass + 1)); echo "ok   examples/embed.c as C, find_package(jade): $(cat "$tmp/out")"
+else
+    fail=$((fail + 1)); echo "FAIL examples/embed.c (C)"; tail -20 "$tmp/log"; cat "$tmp/out" 2>/dev/null
+fi
+if command -v c++ >/dev/null; then
+    if c++ -std=c++17 -Wall -Wextra -x c++ $san -o "$tmp/embed_cxx" "$ex/embed.c" -x none \
+           $(pkg-config --cflags --libs jade egl glesv2) >"$tmp/log" 2>&1 &&
+       LD_LIBRARY_PATH="$tmp/prefix/lib" "$tmp/embed_cxx" "$mesh" >"$tmp/out" 2>&1; then
+        pass=$((pass + 1)); echo "ok   examples/embed.c as C++17, pkg-config: $(cat "$tmp/out")"
+    else
+        fail=$((fail + 1)); echo "FAIL examples/embed.c (C++)"; cat "$tmp/log" "$tmp/out"
+    fi
+fi
 echo "consumer: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -43,7 +43,9 @@ int main(int argc, char **argv)
         jd_scene_defaults(&s, NULL);
         CHECK(jd_renderer_create(&d, &a, &r, &err) == JD_OK, "%s", err.msg);
         if (!r) return 1;
-        CHECK(jd_renderer_post_antialias(r) == (k == 1), "the pass runs only when asked for");
+        jd_renderer_info info;
+        jd_renderer_get_info(r, &info);
+        CHECK(info.post_antialias == (k == 1), "the pass runs only when asked for");
         CHECK(jd_renderer_frame(r, &s, NULL, &err) == JD_OK && jd_platform_read_rgba(P, pic[k], &err) == JD_OK, "%s",
               err.msg);
         jd_renderer_destroy(r);

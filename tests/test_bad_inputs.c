@@ -111,6 +111,30 @@ int main(int argc, char **argv)
     if (!good) {
         printf("SKIP part: no valid mesh given for the truncation and bit-flip cases\n");
     } else {
+        /* The same mesh from memory (an integrator's asset system): the
+         * same triangles, and the caller's bytes untouched. */
+        {
+            jd_arena a;
+            jd_arena_init(&a, mem, sizeof mem);
+            jd_error err = {0};
+            jd_mesh from_file, from_memory;
+            jd_load_desc ld = {.path = valid, .allow_32bit_indices = 1};
+            CHECK(jd_mesh_load_draco(&ld, &a, &from_file, NULL, &err) == JD_OK, "from the file: %s", err.msg);
+            unsigned char first = good[0];
+            jd_load_desc lm = {.data = good, .size = n, .allow_32bit_indices = 1};
+            CHECK(jd_mesh_load_draco(&lm, &a, &from_memory, NULL, &err) == JD_OK, "from memory: %s", err.msg);
+            CHECK(from_memory.num_indices == from_file.num_indices && from_memory.num_vertices == from_file.num_vertices &&
+                      !memcmp(from_memory.positions, from_file.positions, sizeof(float) * 3 * from_file.num_vertices),
+                  "from memory: the same mesh (%u triangles)", from_memory.num_indices / 3);
+            CHECK(good[0] == first, "the caller's bytes are left as they were");
+            jd_load_desc lt = {.data = good, .size = n / 2};
+            CHECK(jd_mesh_load_draco(&lt, &a, &from_memory, NULL, &err) != JD_OK && strstr(err.msg, "the mesh in memory"),
+                  "half of it is refused, named as the mesh in memory: %s", err.msg);
+            static const char gltf[] = "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":48,\"uri\":\"x.bin\"}]}";
+            jd_load_desc lg = {.path = "scene.gltf", .data = gltf, .size = sizeof gltf - 1};
+            CHECK(jd_mesh_load_draco(&lg, &a, &from_memory, NULL, &err) != JD_OK && strstr(err.msg, "came from memory"),
+                  "a glTF from memory with a buffer file is refused: %s", err.msg);
+        }
         char name[320];
         size_t cuts[] = {5, 11, 12, 16, 40, n / 4, n / 2, n - 100, n - 1};
         for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {

@@ -59,7 +59,9 @@ static void test_sh_reduction(jd_renderer *r, const char *label, double tol)
         double ref[9][3];
         jd_sh_project_atlas(atlas, n, ref);
         jd_sh9 gpu;
-        jd_sh_decode(sh27, jd_renderer_highp(r), &gpu);
+        jd_renderer_info info;
+        jd_renderer_get_info(r, &info);
+        jd_sh_decode(sh27, info.highp, &gpu);
         double dc = fmax(fabs(ref[0][0]), fmax(fabs(ref[0][1]), fabs(ref[0][2])));
         CHECK(dc > 0.05, "the capture sees the lit object (DC %.4f)", dc);
         for (int i = 0; i < 9; i++)
@@ -118,6 +120,27 @@ int main(int argc, char **argv)
         jd_platform_close(p);
         return jd_check_summary("gl mediump fp16");
     }
+    {
+        /* A create that fails leaves the arena as it found it, and the
+         * defaults a zeroed descriptor gets are the documented ones. */
+        jd_renderer_desc d;
+        memset(&d, 0, sizeof d);
+        jd_renderer_desc_defaults(&d);
+        CHECK(d.width == 512 && d.height == 512 && d.cube_size == 64 && d.light_map_size == 256 &&
+                  d.proxy_cells == 40 && d.capture_cells == 24 && d.spread_divisor == 8 && d.diffusion_size == 64,
+              "documented defaults");
+        d.mesh = &mesh;
+        d.caps = &caps;
+        d.target_fbo = jd_platform_framebuffer(p);
+        size_t bottom = jd_arena_mark(&a), top = jd_arena_top_mark(&a);
+        jd_renderer *bad = NULL;
+        d.cube_size = 12; /* not a multiple of 8: refused after the renderer's memory was taken */
+        CHECK(jd_renderer_create(&d, &a, &bad, &err) == JD_ERR_ARG, "cube size 12 refused: %s", err.msg);
+        d.cube_size = 64;
+        d.light_map_size = 4096; /* refused later still */
+        CHECK(jd_renderer_create(&d, &a, &bad, &err) == JD_ERR_ARG, "light map 4096 refused: %s", err.msg);
+        CHECK(jd_arena_mark(&a) == bottom && jd_arena_top_mark(&a) == top, "a failed create gives the arena back");
+    }
     jd_renderer *r = make(&a, &mesh, &caps, p, JD_PRECISION_AUTO, 64);
     if (r) {
         /* 100 frames per mode, light orbiting: the core must not allocate. */
@@ -132,8 +155,10 @@ int main(int argc, char **argv)
             }
         printf("core heap calls during %d frames (100 per mode): %lu\n", 100 * JD_MODE_COUNT, core_allocs);
         CHECK(core_allocs == 0, "the frame loop allocates nothing (%lu calls)", core_allocs);
-        printf("render targets: %zu bytes at 64x64\n", jd_renderer_target_bytes(r));
-        if (caps.frag_highp_precision >= 23) test_sh_reduction(r, jd_renderer_highp(r) ? "highp" : "mediump", 0.01);
+        jd_renderer_info info;
+        jd_renderer_get_info(r, &info);
+        printf("render targets: %zu bytes at 64x64\n", info.target_bytes);
+        if (caps.frag_highp_precision >= 23) test_sh_reduction(r, info.highp ? "highp" : "mediump", 0.01);
         jd_renderer_destroy(r);
     }
     jd_arena_reset(&a, mark);

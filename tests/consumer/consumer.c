@@ -5,8 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include <jade.h>
-#include <platform.h>
+#include <jade/jade.h>
+#include <jade/platform.h>
 
 int main(int argc, char **argv)
 {
