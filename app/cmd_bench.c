@@ -6,22 +6,9 @@
 
 #include "alloc_count.h"
 #include "commands.h"
+#include "frame_stats.h"
 #include "health.h"
 #include "json_out.h"
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double percentile(double *sorted, int n, double q)
-{
-    double pos = q * (n - 1);
-    int i = (int)pos;
-    double f = pos - i;
-    return i + 1 < n ? sorted[i] * (1 - f) + sorted[i + 1] * f : sorted[n - 1];
-}
 
 /* Runs `frames` frames of one mode with the light orbiting once per 120
  * frames, so thickness, capture and SH are recomputed every frame. */
@@ -88,8 +75,8 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
     jd_renderer_set_timing(s->renderer, 0);
     double sorted_sum = 0;
     for (int i = 0; i < o->frames; i++) sorted_sum += times[i];
-    qsort(times, (size_t)o->frames, sizeof(double), cmp_double);
-    double med = percentile(times, o->frames, 0.5), p95 = percentile(times, o->frames, 0.95);
+    jd_sort_times(times, o->frames);
+    double med = jd_percentile(times, o->frames, 0.5), p95 = jd_percentile(times, o->frames, 0.95);
     /* The same mode with the light and the camera still (a kiosk between
      * animations): the light-space passes and the spread are reused. */
     int still = o->frames < 60 ? o->frames : 60;
@@ -102,8 +89,8 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
         times[i] = jd_now_ms() - t0;
         if (i) { still_switches += fs.target_switches; still_readbacks += fs.readbacks; }
     }
-    qsort(times, (size_t)still, sizeof(double), cmp_double);
-    double still_med = percentile(times, still, 0.5);
+    jd_sort_times(times, still);
+    double still_med = jd_percentile(times, still, 0.5);
     printf("%s    \"%s\": {\"frame_ms_median\": %.3f, \"frame_ms_p95\": %.3f, \"frame_ms_mean\": %.3f, \"fps\": %.1f, "
            "\"heap_allocations_in_loop\": %lu, \"readbacks_per_frame\": %.2f, \"target_switches_per_frame\": %.2f, "
            "\"fragments_per_frame\": %.0f, \"target_bytes_written_per_frame\": %.0f, \"still_frame_ms_median\": %.3f, "

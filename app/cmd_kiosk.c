@@ -6,16 +6,11 @@
 #include <string.h>
 
 #include "commands.h"
+#include "frame_stats.h"
 #include "health.h"
 #include "image_out.h"
 
 #define KIOSK_SAMPLES 4096 /* the last frames kept for the statistics */
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 /* One line per --log-every: the frames since the last line, their median
  * and p95, and the process's health. */
@@ -24,13 +19,13 @@ static void health_line(jd_session *s, const double *times, double *sorted, long
     int n = recent < KIOSK_SAMPLES ? (int)recent : KIOSK_SAMPLES;
     if (n <= 0) return;
     for (int i = 0; i < n; i++) sorted[i] = times[(frames - 1 - i) % KIOSK_SAMPLES];
-    qsort(sorted, (size_t)n, sizeof(double), cmp_double);
+    jd_sort_times(sorted, n);
     jd_present_stats ps;
     jd_platform_present_stats(s->platform, &ps);
     jd_health h;
     jd_health_sample(&h);
     printf("kiosk: at %.1f s, %ld frames, last %ld: median %.2f ms, p95 %.2f ms, missed vblanks %u", t_ms / 1000.0,
-           frames, recent, sorted[n / 2], sorted[(n * 95) / 100], ps.missed_vblanks);
+           frames, recent, jd_percentile(sorted, n, 0.5), jd_percentile(sorted, n, 0.95), ps.missed_vblanks);
     jd_health_print(stdout, &h);
     printf("\n");
 }
@@ -222,11 +217,12 @@ int jd_cmd_kiosk(int argc, char **argv)
     if (frames > 0) {
         int n = frames < KIOSK_SAMPLES ? (int)frames : KIOSK_SAMPLES;
         memcpy(sorted, times, sizeof(double) * (size_t)n);
-        qsort(sorted, (size_t)n, sizeof(double), cmp_double);
+        jd_sort_times(sorted, n);
         jd_present_stats ps;
         jd_platform_present_stats(s.platform, &ps);
         printf("kiosk: %ld frames in %.1f s, frame time median %.2f ms, p95 %.2f ms, missed vblanks %u",
-               frames, (t_prev - t_start) / 1000.0, sorted[n / 2], sorted[(n * 95) / 100], ps.missed_vblanks);
+               frames, (t_prev - t_start) / 1000.0, jd_percentile(sorted, n, 0.5), jd_percentile(sorted, n, 0.95),
+               ps.missed_vblanks);
         if (ps.refresh_hz > 0)
             printf(" (display %.0f Hz), page flips %u, modesets %u", ps.refresh_hz, ps.flips, ps.modesets);
         printf("\n");

@@ -459,7 +459,11 @@ int jd_options_finish(jd_options *o, const char *cmd)
         return 0;
     }
     if (o->profile && !jd_profile_find(o->profile)) {
-        fprintf(stderr, "jade %s: --profile: unknown profile '%s' (have: generic, vc4, mali400)\n", cmd, o->profile);
+        /* The names from the one list of profiles (core/profile.c). */
+        char have[128] = "";
+        for (int i = 0; i < jd_profile_count; i++)
+            snprintf(have + strlen(have), sizeof have - strlen(have), "%s%s", i ? ", " : "", jd_profiles[i].name);
+        fprintf(stderr, "jade %s: --profile: unknown profile '%s' (have: %s)\n", cmd, o->profile, have);
         return 0;
     }
     if (!o->has_sigma_s) memcpy(o->scene.sigma_s, m->sigma_s, sizeof m->sigma_s);

@@ -86,11 +86,6 @@ void jd_platform_present_stats(const jd_platform *p, jd_present_stats *st)
     p->ops->stats(p->impl, st);
 }
 const char *jd_platform_describe(const jd_platform *p) { return p->ops->describe(p->impl); }
-void *jd_platform_proc(const jd_platform *p, const char *name)
-{
-    (void)p;
-    return (void *)eglGetProcAddress(name);
-}
 void *jd_platform_gl_proc(const char *name) { return (void *)eglGetProcAddress(name); }
 
 double jd_platform_time_ms(void)

@@ -72,7 +72,6 @@ int jd_platform_poll(jd_platform *p, jd_event *ev);
 void jd_platform_present_stats(const jd_platform *p, jd_present_stats *st);
 /* Milliseconds on the monotonic clock: frame pacing and statistics. */
 double jd_platform_time_ms(void);
-void *jd_platform_proc(const jd_platform *p, const char *name);
 void *jd_platform_gl_proc(const char *name);
 /* One line: which path was taken, e.g. "EGL 1.5 surfaceless (Mesa Project)". */
 const char *jd_platform_describe(const jd_platform *p);
