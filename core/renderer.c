@@ -215,16 +215,24 @@ void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, float aspect, jd_scen
 
 /* ---- start-up ---------------------------------------------------------- */
 
-/* An RGBA8 texture, clamped and without mipmaps: NPOT-safe in core ES 2.0. */
-static GLuint new_texture(int w, int h, GLint filter)
+/* A new texture bound to `kind`, clamped and without mipmaps: NPOT-safe
+ * in core ES 2.0. */
+static GLuint new_sampled(GLenum kind, GLint filter)
 {
     GLuint tex;
     glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindTexture(kind, tex);
+    glTexParameteri(kind, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(kind, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(kind, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(kind, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return tex;
+}
+
+/* An RGBA8 2D texture. */
+static GLuint new_texture(int w, int h, GLint filter)
+{
+    GLuint tex = new_sampled(GL_TEXTURE_2D, filter);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
     return tex;
 }
@@ -262,13 +270,7 @@ static jd_result make_target(jd_renderer *r, target *t, int w, int h, int with_d
  * one texture (held by the first). Linear filtering, clamped at the edges. */
 static jd_result make_cube_target(jd_renderer *r, target *faces, int size, const char *what, jd_error *err)
 {
-    GLuint tex;
-    glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, tex);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    GLuint tex = new_sampled(GL_TEXTURE_CUBE_MAP, GL_LINEAR);
     for (int f = 0; f < 6; f++)
         glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f, 0, GL_RGBA, size, size, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
     faces[0].tex = tex;

@@ -29,6 +29,10 @@
 
 #define MAX_CONNECTORS 16
 #define MAX_MODES 64
+#define MAX_MODIFIERS 32
+#ifndef DRM_FORMAT_MOD_INVALID
+#define DRM_FORMAT_MOD_INVALID 0x00ffffffffffffffULL
+#endif
 
 typedef struct drm_platform {
     int fd;
@@ -58,7 +62,13 @@ typedef struct drm_platform {
     int lost, want_w, want_h, want_hz, max_w, max_h;
     EGLConfig cfg;
     char failed[256]; /* a hotplug that could not be followed, said at the next present */
-    char describe[512];
+    /* Buffer layouts: the modifiers the primary plane takes for the format
+     * (tiled or compressed scan-out on newer boards), and whether the
+     * driver takes framebuffers with modifiers. */
+    uint64_t modifiers[MAX_MODIFIERS];
+    int num_modifiers, surface_modifiers, fb_modifiers;
+    char render_node[64]; /* the GPU's render node, where it is another device (kmsro boards) */
+    char describe[640];
 } drm_platform;
 
 static drm_platform g_drm;
@@ -85,7 +95,29 @@ static jd_result open_device(drm_platform *p, const char *want, jd_error *err)
         snprintf(p->device, sizeof p->device, "%s", want);
         return JD_OK;
     }
-    for (int i = 0; i < 16; i++) {
+    /* The kernel's own list of DRM devices: the first whose primary node
+     * drives a display. On boards whose display engine and GPU are two
+     * devices (kmsro: sun4i or rockchip display, lima or panfrost GPU) the
+     * GPU's render node is noted; Mesa's GBM on the display node reaches it. */
+    drmDevicePtr devs[16];
+    int n = drmGetDevices2(0, devs, 16);
+    for (int i = 0; i < n && p->fd < 0; i++) {
+        if (!(devs[i]->available_nodes & (1 << DRM_NODE_PRIMARY))) continue;
+        const char *path = devs[i]->nodes[DRM_NODE_PRIMARY];
+        int fd = open(path, O_RDWR | O_CLOEXEC);
+        if (fd < 0) continue;
+        if (!kms_capable(fd)) { close(fd); continue; }
+        p->fd = fd;
+        snprintf(p->device, sizeof p->device, "%s", path);
+        for (int k = 0; k < n && !p->render_node[0]; k++) {
+            int own = k == i;
+            if ((devs[k]->available_nodes & (1 << DRM_NODE_RENDER)) && (own || !(devs[i]->available_nodes & (1 << DRM_NODE_RENDER))))
+                snprintf(p->render_node, sizeof p->render_node, "%s", devs[k]->nodes[DRM_NODE_RENDER]);
+        }
+    }
+    if (n > 0) drmFreeDevices(devs, n);
+    if (p->fd >= 0) return JD_OK;
+    for (int i = 0; i < 16 && n < 0; i++) { /* no enumeration (an old kernel): the card nodes in turn */
         char path[32];
         snprintf(path, sizeof path, "/dev/dri/card%d", i);
         int fd = open(path, O_RDWR | O_CLOEXEC);
@@ -205,6 +237,36 @@ static uint64_t prop_value(int fd, uint32_t obj, uint32_t type, const char *name
     return v;
 }
 
+/* The CRTC's index in the resources (planes and encoders name CRTCs by
+ * it), -1 if it is not there. */
+static int crtc_index(drm_platform *p)
+{
+    drmModeRes *res = drmModeGetResources(p->fd);
+    int index = -1;
+    for (int i = 0; res && i < res->count_crtcs; i++)
+        if (res->crtcs[i] == p->crtc_id) index = i;
+    drmModeFreeResources(res);
+    return index;
+}
+
+/* The primary plane that can feed the CRTC, 0 if none (needs the
+ * universal planes capability). */
+static uint32_t primary_plane(drm_platform *p)
+{
+    int index = crtc_index(p);
+    uint32_t id = 0;
+    drmModePlaneRes *planes = drmModeGetPlaneResources(p->fd);
+    for (uint32_t i = 0; planes && index >= 0 && i < planes->count_planes && !id; i++) {
+        drmModePlane *pl = drmModeGetPlane(p->fd, planes->planes[i]);
+        if (pl && (pl->possible_crtcs & (1u << index)) &&
+            prop_value(p->fd, pl->plane_id, DRM_MODE_OBJECT_PLANE, "type") == DRM_PLANE_TYPE_PRIMARY)
+            id = pl->plane_id;
+        drmModeFreePlane(pl);
+    }
+    drmModeFreePlaneResources(planes);
+    return id;
+}
+
 /* Atomic needs the CRTC's primary plane and the ids of the properties a
  * commit sets. */
 static jd_result setup_atomic(drm_platform *p, jd_error *err)
@@ -213,20 +275,7 @@ static jd_result setup_atomic(drm_platform *p, jd_error *err)
         drmSetClientCap(p->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0)
         return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: the driver does not offer atomic modesetting (drop --atomic)",
                        p->device);
-    drmModeRes *res = drmModeGetResources(p->fd);
-    int crtc_index = -1;
-    for (int i = 0; res && i < res->count_crtcs; i++)
-        if (res->crtcs[i] == p->crtc_id) crtc_index = i;
-    drmModeFreeResources(res);
-    drmModePlaneRes *planes = drmModeGetPlaneResources(p->fd);
-    for (uint32_t i = 0; planes && i < planes->count_planes && !p->plane_id; i++) {
-        drmModePlane *pl = drmModeGetPlane(p->fd, planes->planes[i]);
-        if (pl && crtc_index >= 0 && (pl->possible_crtcs & (1u << crtc_index)) &&
-            prop_value(p->fd, pl->plane_id, DRM_MODE_OBJECT_PLANE, "type") == DRM_PLANE_TYPE_PRIMARY)
-            p->plane_id = pl->plane_id;
-        drmModeFreePlane(pl);
-    }
-    drmModeFreePlaneResources(planes);
+    p->plane_id = primary_plane(p);
     if (!p->plane_id) return jd_fail(err, JD_ERR_PLATFORM, "%s: no primary plane for the CRTC of %s", p->device, p->connector_name);
     const uint32_t C = DRM_MODE_OBJECT_CONNECTOR, R = DRM_MODE_OBJECT_CRTC, P = DRM_MODE_OBJECT_PLANE;
     p->p_conn_crtc = prop_id(p->fd, p->connector_id, C, "CRTC_ID");
@@ -274,6 +323,38 @@ static int atomic_commit(drm_platform *p, uint32_t fb, int modeset)
     int rc = drmModeAtomicCommit(p->fd, req, flags, p);
     drmModeAtomicFree(req);
     return rc;
+}
+
+/* The modifiers the CRTC's primary plane takes for the format, from its
+ * IN_FORMATS property (none where the driver does not say). */
+static void plane_modifiers(drm_platform *p, uint32_t format)
+{
+    p->num_modifiers = 0;
+    drmSetClientCap(p->fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1);
+    uint32_t plane = primary_plane(p);
+    uint64_t blob_id = plane ? prop_value(p->fd, plane, DRM_MODE_OBJECT_PLANE, "IN_FORMATS") : 0;
+    drmModePropertyBlobRes *blob = blob_id ? drmModeGetPropertyBlob(p->fd, (uint32_t)blob_id) : NULL;
+    if (blob) p->num_modifiers = jd_drm_modifiers_for(blob->data, blob->length, format, p->modifiers, MAX_MODIFIERS);
+    drmModeFreePropertyBlob(blob);
+}
+
+/* The scan-out surface at the mode's size: with the plane's modifiers
+ * where it names some (the driver then picks the best layout it can scan
+ * out), else with none (linear, or the driver's implicit choice). */
+static struct gbm_surface *make_gbm_surface(drm_platform *p, uint32_t format)
+{
+    struct gbm_surface *s = NULL;
+    plane_modifiers(p, format);
+    p->surface_modifiers = 0;
+    if (p->num_modifiers > 0) {
+        s = gbm_surface_create_with_modifiers(p->gbm, p->mode.hdisplay, p->mode.vdisplay, format, p->modifiers,
+                                              (unsigned)p->num_modifiers);
+        p->surface_modifiers = s != NULL;
+    }
+    if (!s)
+        s = gbm_surface_create(p->gbm, p->mode.hdisplay, p->mode.vdisplay, format,
+                               GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+    return s;
 }
 
 /* EGL's config must carry the GBM surface's format as its visual; among
@@ -350,8 +431,7 @@ static int remake_surface(drm_platform *p)
     if (p->surf) eglDestroySurface(p->edpy, p->surf);
     p->surf = EGL_NO_SURFACE;
     gbm_surface_destroy(p->gbm_surface);
-    p->gbm_surface = gbm_surface_create(p->gbm, p->mode.hdisplay, p->mode.vdisplay, p->format,
-                                        GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+    p->gbm_surface = make_gbm_surface(p, p->format);
     if (p->gbm_surface)
         p->surf = eglCreateWindowSurface(p->edpy, p->cfg, (EGLNativeWindowType)p->gbm_surface, no_attribs);
     if (!p->gbm_surface || p->surf == EGL_NO_SURFACE || !eglMakeCurrent(p->edpy, p->surf, p->surf, p->ctx)) {
@@ -450,11 +530,12 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
 
     p->gbm = gbm_create_device(p->fd);
     if (!p->gbm) return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: GBM cannot use this device", p->device));
+    uint64_t cap = 0;
+    p->fb_modifiers = drmGetCap(p->fd, DRM_CAP_ADDFB2_MODIFIERS, &cap) == 0 && cap;
     const uint32_t formats[] = {GBM_FORMAT_XRGB8888, GBM_FORMAT_ARGB8888};
     for (int i = 0; i < 2 && !p->gbm_surface; i++) {
         p->format = formats[i];
-        p->gbm_surface = gbm_surface_create(p->gbm, p->mode.hdisplay, p->mode.vdisplay, p->format,
-                                            GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+        p->gbm_surface = make_gbm_surface(p, p->format);
     }
     if (!p->gbm_surface)
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: no scan-out surface in XRGB8888 or ARGB8888 at %dx%d",
@@ -482,6 +563,12 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
              p->format == GBM_FORMAT_XRGB8888 ? "XRGB8888" : "ARGB8888", major, minor,
              eglQueryString(p->edpy, EGL_VENDOR));
     size_t at = strlen(p->describe);
+    snprintf(p->describe + at, sizeof p->describe - at, "; buffers %s%s%s",
+             p->surface_modifiers   ? "with the plane's modifiers"
+             : p->num_modifiers > 0 ? "without modifiers (GBM took none of the plane's)"
+                                    : "without modifiers (the plane lists none)",
+             p->render_node[0] ? ", GPU " : "", p->render_node);
+    at = strlen(p->describe);
     snprintf(p->describe + at, sizeof p->describe - at, "; hotplug %s",
              p->uevent_fd >= 0 ? "followed (kernel uevents)" : "not followed (no uevent socket)");
     char why[96] = "";
@@ -508,10 +595,24 @@ static uint32_t fb_for(drm_platform *p, struct gbm_bo *bo)
 {
     uint32_t fb = (uint32_t)(uintptr_t)gbm_bo_get_user_data(bo);
     if (fb) return fb;
-    uint32_t handles[4] = {gbm_bo_get_handle(bo).u32}, pitches[4] = {gbm_bo_get_stride(bo)}, offsets[4] = {0};
-    if (drmModeAddFB2(p->fd, gbm_bo_get_width(bo), gbm_bo_get_height(bo), p->format, handles, pitches, offsets, &fb,
-                      0) != 0)
-        return 0;
+    /* Every plane of the buffer, with its layout (modifier) where the driver
+     * takes it; a driver that refuses gets the plain call, which serves
+     * linear and implicitly laid-out buffers. */
+    uint32_t handles[4] = {0}, pitches[4] = {0}, offsets[4] = {0};
+    uint64_t mods[4] = {0}, mod = gbm_bo_get_modifier(bo);
+    int planes = gbm_bo_get_plane_count(bo);
+    for (int i = 0; i < planes && i < 4; i++) {
+        handles[i] = gbm_bo_get_handle_for_plane(bo, i).u32;
+        pitches[i] = gbm_bo_get_stride_for_plane(bo, i);
+        offsets[i] = gbm_bo_get_offset(bo, i);
+        mods[i] = mod;
+    }
+    uint32_t w = gbm_bo_get_width(bo), h = gbm_bo_get_height(bo);
+    int rc = -1;
+    if (p->fb_modifiers && mod != DRM_FORMAT_MOD_INVALID)
+        rc = drmModeAddFB2WithModifiers(p->fd, w, h, p->format, handles, pitches, offsets, mods, &fb, DRM_MODE_FB_MODIFIERS);
+    if (rc != 0) rc = drmModeAddFB2(p->fd, w, h, p->format, handles, pitches, offsets, &fb, 0);
+    if (rc != 0) return 0;
     gbm_bo_set_user_data(bo, (void *)(uintptr_t)fb, destroy_fb);
     return fb;
 }
@@ -631,16 +732,14 @@ static const char *drm_describe(const void *impl) { return ((const drm_platform 
 /* The writeback connector that can join the kiosk's CRTC, 0 if none. */
 static uint32_t find_writeback(drm_platform *p)
 {
+    int index = crtc_index(p);
     drmModeRes *res = drmModeGetResources(p->fd);
     uint32_t found = 0;
-    int crtc_index = -1;
-    for (int i = 0; res && i < res->count_crtcs; i++)
-        if (res->crtcs[i] == p->crtc_id) crtc_index = i;
-    for (int i = 0; res && crtc_index >= 0 && i < res->count_connectors && !found; i++) {
+    for (int i = 0; res && index >= 0 && i < res->count_connectors && !found; i++) {
         drmModeConnector *c = drmModeGetConnector(p->fd, res->connectors[i]);
         for (int e = 0; c && c->connector_type == DRM_MODE_CONNECTOR_WRITEBACK && e < c->count_encoders; e++) {
             drmModeEncoder *enc = drmModeGetEncoder(p->fd, c->encoders[e]);
-            if (enc && (enc->possible_crtcs & (1u << crtc_index))) found = c->connector_id;
+            if (enc && (enc->possible_crtcs & (1u << index))) found = c->connector_id;
             drmModeFreeEncoder(enc);
         }
         drmModeFreeConnector(c);

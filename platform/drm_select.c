@@ -132,6 +132,39 @@ int jd_drm_uevent_is_change(const char *msg, size_t len, const char *card)
     return drm && change && ours;
 }
 
+int jd_drm_modifiers_for(const void *blob, size_t len, uint32_t format, uint64_t *out, int cap)
+{
+    /* drm_format_modifier_blob: version, flags, count_formats,
+     * formats_offset, count_modifiers, modifiers_offset (u32 each); then
+     * u32 formats, and 24-byte entries {u64 formats mask, u32 offset, u32
+     * pad, u64 modifier}: the mask's bit i says the modifier serves format
+     * offset + i. */
+    const uint8_t *b = blob;
+    uint32_t h[6];
+    if (!b || len < sizeof h) return 0;
+    memcpy(h, b, sizeof h);
+    uint64_t fmt_end = (uint64_t)h[3] + 4ull * h[2], mod_end = (uint64_t)h[5] + 24ull * h[4];
+    if (h[0] != 1 || fmt_end > len || mod_end > len) return 0;
+    int index = -1;
+    for (uint32_t i = 0; i < h[2] && index < 0; i++) {
+        uint32_t f;
+        memcpy(&f, b + h[3] + 4 * i, 4);
+        if (f == format) index = (int)i;
+    }
+    if (index < 0) return 0;
+    int n = 0;
+    for (uint32_t i = 0; i < h[4] && n < cap; i++) {
+        const uint8_t *e = b + h[5] + 24 * i;
+        uint64_t mask, mod;
+        uint32_t offset;
+        memcpy(&mask, e, 8);
+        memcpy(&offset, e + 8, 4);
+        memcpy(&mod, e + 16, 8);
+        if ((uint32_t)index >= offset && (uint32_t)index - offset < 64 && (mask >> (index - (int)offset) & 1)) out[n++] = mod;
+    }
+    return n;
+}
+
 int jd_drm_holders(const char *proc_root, const char *device, int self_pid, char *out, size_t cap)
 {
     struct stat dev;

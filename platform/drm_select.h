@@ -4,6 +4,7 @@
 #define JD_DRM_SELECT_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 typedef struct jd_drm_mode {
     int w, h, hz;
@@ -51,6 +52,12 @@ jd_drm_follow jd_drm_follow_connector(const jd_drm_connector *now, int lost, int
  * the DRM device `card` ("card0"): a hotplug, or any other change after
  * which the connectors are worth probing again. */
 int jd_drm_uevent_is_change(const char *msg, size_t len, const char *card);
+
+/* The modifiers a plane's IN_FORMATS blob (struct drm_format_modifier_blob,
+ * as the kernel lays it out) lists for `format`, into out (at most cap);
+ * their number, 0 where the blob is malformed or lacks the format. The
+ * blob's offsets and counts are checked against its length. */
+int jd_drm_modifiers_for(const void *blob, size_t len, uint32_t format, uint64_t *out, int cap);
 
 /* The processes under proc_root (normally /proc) other than self_pid that
  * have `device` open, as "Xorg (pid 812), jade (pid 901)"; their number.

@@ -89,6 +89,21 @@ restored SIGTERM
 # Hotplug: the display unplugged and plugged back in. vkms makes no hotplug
 # of its own, so the connector is forced off and on through debugfs and the
 # kernel's uevent is asked for by hand, as a real hotplug would send it.
+# stop PID NAME: SIGTERM, then at most 120 s for the exit; a process still
+# there is recorded (where the kernel says it waits) and killed, so that a
+# hang shows in the results instead of stopping the guest. Its exit status.
+stop() {
+    kill -TERM "$1" 2>/dev/null
+    i=0
+    while [ $i -lt 1200 ] && [ -d /proc/$1 ] && [ "$(cut -d' ' -f3 /proc/$1/stat 2>/dev/null)" != Z ]; do
+        sleep 0.1; i=$((i + 1))
+    done
+    if [ -d /proc/$1 ] && [ "$(cut -d' ' -f3 /proc/$1/stat 2>/dev/null)" != Z ]; then
+        bad "$2: still running 120 s after SIGTERM, in $(cat /proc/$1/wchan 2>/dev/null): $(tr '\n' ' ' < /proc/$1/stack 2>/dev/null | cut -c1-300); $(tail -2 "$out/$2" | tr '\n' ' ')"
+        kill -KILL "$1" 2>/dev/null
+    fi
+    wait "$1"
+}
 # wait_for FILE TEXT SECONDS
 wait_for() {
     i=0
@@ -111,9 +126,8 @@ if [ -w "$force" ]; then
     if wait_for "$out/hotplug" "the display is back" 90 && wait_for "$out/hotplug" "set again" 90; then
         ok "plugged back: $(grep -e 'is back' -e 'set again' "$out/hotplug" | tr '\n' ' ')"
     else bad "plug back: $(cat "$out/hotplug")"; fi
-    echo unspecified > "$force"
-    kill -TERM "$pid"
-    wait "$pid"
+    printf unspecified > "$force" # 11 bytes: the kernel's buffer has no room for a newline too
+    stop "$pid" hotplug
     rc=$?
     line=$(grep "^kiosk: [0-9]* frames" "$out/hotplug")
     if [ "$rc" -eq 0 ] && echo "$line" | grep -q "modesets 2"; then
@@ -137,8 +151,7 @@ if [ -e /dev/uinput ] && [ -x /lib/systemd/systemd-udevd ]; then
     while [ $i -lt 500 ] && ! grep -q "touched at" "$out/touch"; do sleep 0.1; i=$((i + 1)); done
     i=0
     while [ $i -lt 600 ] && ! grep -q "back in place" "$out/touch"; do sleep 0.1; i=$((i + 1)); done
-    kill -TERM "$pid"
-    wait "$pid"
+    stop "$pid" touch
     kill "$tpid" 2>/dev/null
     if grep -q "input: 1 touch or pointer device" "$out/touch"; then ok "libinput finds the touch screen: $(grep -o 'input: [^;]*' "$out/touch")"
     else bad "touch screen not found: $(head -3 "$out/touch")"; fi

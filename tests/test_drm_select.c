@@ -1,5 +1,6 @@
 /* DRM connector and mode selection on recorded data (no display needed). */
 #include <errno.h>
+#include <stdint.h>
 #include <string.h>
 #include <unistd.h>
 #include <sys/stat.h>
@@ -96,6 +97,28 @@ int main(void)
     CHECK(!jd_drm_uevent_is_change(usb, sizeof usb, "card0"), "a USB device");
     static const char cut[] = "change@/devices/x/drm/card0\0ACTION=change\0SUBSYSTEM=drm\0DEVNAME=dri/car";
     CHECK(!jd_drm_uevent_is_change(cut, sizeof cut - 1, "card0"), "a message cut short");
+
+    /* A plane's IN_FORMATS, laid out as the kernel does: XRGB8888 in LINEAR
+     * and a vendor's compressed layout, ARGB8888 in LINEAR only. */
+    {
+        uint8_t blob[24 + 8 + 48];
+        uint32_t hdr[6] = {1, 0, 2, 24, 2, 32}, fmts[2] = {0x34325258, 0x34325241};
+        uint64_t m0[3] = {3, 0, 0}, m1[3] = {1, 0, 0x0800000000000001ull};
+        memcpy(blob, hdr, 24);
+        memcpy(blob + 24, fmts, 8);
+        memcpy(blob + 32, m0, 24);
+        memcpy(blob + 56, m1, 24);
+        uint64_t mods[8];
+        int k = jd_drm_modifiers_for(blob, sizeof blob, 0x34325258, mods, 8);
+        CHECK(k == 2 && mods[0] == 0 && mods[1] == 0x0800000000000001ull, "XRGB8888: linear and the vendor's (%d)", k);
+        k = jd_drm_modifiers_for(blob, sizeof blob, 0x34325241, mods, 8);
+        CHECK(k == 1 && mods[0] == 0, "ARGB8888: linear only (%d)", k);
+        CHECK(jd_drm_modifiers_for(blob, sizeof blob, 0x36314752, mods, 8) == 0, "a format the plane lacks: none");
+        CHECK(jd_drm_modifiers_for(blob, sizeof blob - 1, 0x34325258, mods, 8) == 0, "a blob cut short: none");
+        hdr[5] = 0xfffffff0u;
+        memcpy(blob, hdr, 24);
+        CHECK(jd_drm_modifiers_for(blob, sizeof blob, 0x34325258, mods, 8) == 0, "an offset past the end: none");
+    }
 
     jd_drm_master_message("/dev/dri/card0", EACCES, why, sizeof why);
     CHECK(strstr(why, "/dev/dri/card0") && strstr(why, "cannot become DRM master") && strstr(why, "display server"),
