@@ -39,9 +39,14 @@ vec4 jd_pack_signed(float s)
 #if JD_PACK_HIGHP
     return jd_pack(s * 0.5 + 0.5);
 #else
-    vec2 pos = jd_pack(max(s, 0.0)).xy;
-    vec2 neg = jd_pack(max(-s, 0.0)).xy;
-    return vec4(pos, neg);
+    // Both magnitudes at once in whole-vector operations (lanes: positive
+    // part's two bytes, negative part's two): a vec4 assembled from two
+    // halves made lima keep extra registers live. Multiplying by exact 0s
+    // and 1s selects each lane's value without rounding.
+    vec4 a = clamp(s * vec4(1.0, 1.0, -1.0, -1.0), 0.0, 1.0) * 255.0;
+    vec4 b = floor(a);
+    const vec4 low = vec4(0.0, 1.0, 0.0, 1.0);
+    return b / 255.0 * (1.0 - low) + (a - b) * low;
 #endif
 }
 

@@ -23,6 +23,22 @@ void main()
     float step = 2.0 / float(JD_N);
     vec2 t0 = floor(v_texel.xy) + 0.5;          // snapped: varyings may be interpolated in fp16
     vec2 f0 = (t0 - v_texel.zw) * step - 1.0;   // the first sample's face coordinates
+#if JD_B == 2
+    // The four samples of a 2x2 block as the lanes of vec4s (VideoCore IV
+    // and Mali-400 take 2x2 blocks): one vector expression instead of four
+    // scalar ones kept lima's registers from spilling.
+    vec4 fx = f0.x + vec4(0.0, step, 0.0, step), fy = f0.y + vec4(0.0, 0.0, step, step);
+    vec4 inv = 1.0 / (1.0 + fx * fx + fy * fy);
+    vec4 rs = sqrt(inv);
+    vec4 y = v_poly0.x + v_poly0.y * fx + v_poly0.z * fy + v_poly0.w * fx * fx + (v_poly1.x * fy + v_poly1.y * fx) * fy;
+    vec4 power = inv * rs * (1.0 + v_poly1.z * (rs - 1.0) + v_poly1.w * (inv - 1.0));
+    vec4 w = y * power;
+    vec3 c = texture2D(u_atlas, t0 * u_atlas_texel).rgb * w.x;
+    c += texture2D(u_atlas, (t0 + vec2(1.0, 0.0)) * u_atlas_texel).rgb * w.y;
+    c += texture2D(u_atlas, (t0 + vec2(0.0, 1.0)) * u_atlas_texel).rgb * w.z;
+    c += texture2D(u_atlas, (t0 + vec2(1.0, 1.0)) * u_atlas_texel).rgb * w.w;
+    float sum = dot(c, v_channel);
+#else
     float sum = 0.0;
     for (int j = 0; j < JD_B; j++) {
         for (int i = 0; i < JD_B; i++) {
@@ -38,5 +54,6 @@ void main()
             sum += l * y * power;
         }
     }
+#endif
     gl_FragColor = jd_pack_signed(sum);
 }
