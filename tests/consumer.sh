@@ -14,8 +14,8 @@ san=""
 grep -q '^JADE_SANITIZE:BOOL=ON' "$build/CMakeCache.txt" && san="-fsanitize=address,undefined"
 if cmake -S "$src/consumer" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_C_FLAGS="$san" \
        -DCMAKE_EXE_LINKER_FLAGS="$san" >"$tmp/log" 2>&1 &&
-   cmake --build "$tmp/cm" >>"$tmp/log" 2>&1 && "$tmp/cm/consumer" "$mesh"; then
-    pass=$((pass + 1)); echo "ok   find_package(jade), static libjade"
+   cmake --build "$tmp/cm" >>"$tmp/log" 2>&1 && "$tmp/cm/consumer" "$mesh" && "$tmp/cm/api"; then
+    pass=$((pass + 1)); echo "ok   find_package(jade), static libjade: consumer.c, and api.cpp as C++17"
 else
     fail=$((fail + 1)); echo "FAIL find_package(jade)"; tail -20 "$tmp/log"
 fi
@@ -35,6 +35,18 @@ if command -v c++ >/dev/null; then
     else
         fail=$((fail + 1)); echo "FAIL C++"; cat "$tmp/log"
     fi
+fi
+# api.cpp through pkg-config too, and it names every function the installed
+# headers declare.
+declared=$(cat "$tmp/prefix/include/jade/"*.h | grep -ohE "\bjd_[a-z0-9_]+ *\(" | sed 's/ *(//' | sort -u)
+listed=$(sed -n 's/^ *FN(\(jd_[a-z0-9_]*\)),$/\1/p' "$src/consumer/api.cpp" | sort -u)
+missing=$(printf '%s\n' "$declared" | grep -vxF "$listed")
+if [ -z "$missing" ] && command -v c++ >/dev/null &&
+   c++ -std=c++17 -Wall -Wextra $san -o "$tmp/api" "$src/consumer/api.cpp" $(pkg-config --cflags --libs jade-platform) >"$tmp/log" 2>&1 &&
+   LD_LIBRARY_PATH="$tmp/prefix/lib" "$tmp/api" >"$tmp/out" 2>&1; then
+    pass=$((pass + 1)); echo "ok   every public function ($(printf '%s\n' "$declared" | wc -l)) from C++, pkg-config: $(cat "$tmp/out")"
+else
+    fail=$((fail + 1)); echo "FAIL api.cpp: ${missing:+not in api.cpp: $(echo $missing)}"; cat "$tmp/log" "$tmp/out" 2>/dev/null
 fi
 # examples/embed.c, the README's embedding: its own EGL context, the mesh
 # from memory; as C through find_package(jade) and as C++ through pkg-config.
