@@ -28,7 +28,7 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
     jd_renderer_finish(s->renderer);
     jd_alloc_count_start();
     static double t_log;
-    if (!t_log) t_log = jd_now_ms();
+    if (!t_log) t_log = jd_clock_ms();
     jd_frame_stats fs;
     double switches = 0, readbacks = 0, fragments = 0, bytes = 0;
     for (int i = 0; i < o->frames; i++) {
@@ -39,10 +39,10 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
             memcpy(sc.sigma_a, m->sigma_a, sizeof sc.sigma_a);
             sc.eta = m->eta;
         }
-        double t0 = jd_now_ms();
+        double t0 = jd_clock_ms();
         if (jd_renderer_frame(s->renderer, &sc, &fs, &err)) { jd_alloc_count_stop(); goto fail; }
         jd_renderer_finish(s->renderer);
-        double t1 = jd_now_ms();
+        double t1 = jd_clock_ms();
         times[i] = t1 - t0;
         switches += fs.target_switches;
         readbacks += fs.readbacks;
@@ -83,10 +83,10 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
     double still_switches = 0, still_readbacks = 0;
     sc.light_azimuth = o->scene.light_azimuth;
     for (int i = 0; i < still; i++) {
-        double t0 = jd_now_ms();
+        double t0 = jd_clock_ms();
         if (jd_renderer_frame(s->renderer, &sc, &fs, &err)) goto fail;
         jd_renderer_finish(s->renderer);
-        times[i] = jd_now_ms() - t0;
+        times[i] = jd_clock_ms() - t0;
         if (i) { still_switches += fs.target_switches; still_readbacks += fs.readbacks; }
     }
     jd_sort_times(times, still);
@@ -137,7 +137,7 @@ int jd_cmd_bench(int argc, char **argv)
     first.mode = o.scene.mode; /* with "all": the default, full */
     if (jd_renderer_frame(s.renderer, &first, NULL, &err)) { fprintf(stderr, "jade bench: %s\n", err.msg); jd_session_close(&s); return 1; }
     jd_renderer_finish(s.renderer);
-    double ttff = jd_now_ms() - s.t_start_ms;
+    double ttff = jd_clock_ms() - s.t_start_ms;
     jd_renderer_info info;
     jd_renderer_get_info(s.renderer, &info);
 

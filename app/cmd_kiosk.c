@@ -131,7 +131,7 @@ int jd_cmd_kiosk(int argc, char **argv)
     double *times = kiosk_times, *sorted = kiosk_sorted;
     fprintf(stderr, "%s\n%s\n", jd_platform_describe(s.platform), jd_antialias_describe(s.renderer));
     jd_scene sc = o.scene;
-    double t_start = jd_now_ms(), t_prev = t_start, t_log = t_start, t_input = -1e300, t_ease = t_start;
+    double t_start = jd_clock_ms(), t_prev = t_start, t_log = t_start, t_input = -1e300, t_ease = t_start;
     /* The user's turn of the camera, eased back to the scene's own once
      * --idle seconds pass without input. */
     float turn_az = 0, turn_el = 0;
@@ -166,9 +166,9 @@ int jd_cmd_kiosk(int argc, char **argv)
                 turn_el += dy * per_px;
                 if (!touched)
                     printf("kiosk: touched at %.1f s: the object follows, and turns back after %g s without input\n",
-                           (jd_now_ms() - t_start) / 1000.0, o.idle_s);
+                           (jd_clock_ms() - t_start) / 1000.0, o.idle_s);
                 touched = 1;
-                t_input = jd_now_ms();
+                t_input = jd_clock_ms();
             }
         }
         if (quit) break;
@@ -176,7 +176,7 @@ int jd_cmd_kiosk(int argc, char **argv)
             reload(&s, &o, &sc, argc, argv, kiosk_store, &cur);
             if (!s.renderer) { rc = 1; break; }
         }
-        double now = jd_now_ms(), dt = now - t_ease;
+        double now = jd_clock_ms(), dt = now - t_ease;
         t_ease = now;
         if (now - t_input > o.idle_s * 1000.0) {
             /* Back to the idle animation, by half every 0.4 s of clock. */
@@ -203,7 +203,7 @@ int jd_cmd_kiosk(int argc, char **argv)
             rc = 1;
             break;
         }
-        now = jd_now_ms();
+        now = jd_clock_ms();
         times[frames % KIOSK_SAMPLES] = now - t_prev;
         t_prev = now;
         frames++;

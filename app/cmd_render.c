@@ -35,24 +35,24 @@ int jd_cmd_render(int argc, char **argv)
      * JITs them): the time reported is a steady frame's. */
     double first_ms = 0, frame_ms = 0, read_ms = 0;
     for (int i = -1; i < o.frames; i++) {
-        double t0 = jd_now_ms();
+        double t0 = jd_clock_ms();
         if (jd_renderer_frame(s.renderer, &o.scene, NULL, &err)) {
             fprintf(stderr, "jade render: %s\n", err.msg);
             jd_session_close(&s);
             return 1;
         }
         jd_renderer_finish(s.renderer);
-        frame_ms = jd_now_ms() - t0;
-        if (i == -1) first_ms = jd_now_ms() - s.t_start_ms;
+        frame_ms = jd_clock_ms() - t0;
+        if (i == -1) first_ms = jd_clock_ms() - s.t_start_ms;
     }
     /* Only the last frame is written. */
-    double t1 = jd_now_ms();
+    double t1 = jd_clock_ms();
     if (jd_platform_read_rgba(s.platform, px, &err)) {
         fprintf(stderr, "jade render: %s\n", err.msg);
         jd_session_close(&s);
         return 1;
     }
-    read_ms = jd_now_ms() - t1;
+    read_ms = jd_clock_ms() - t1;
     if (jd_png_write(o.out, o.width, o.height, px, &err)) {
         fprintf(stderr, "jade render: %s\n", err.msg);
         rc = 1;

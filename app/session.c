@@ -14,7 +14,6 @@
 #define JD_ASSET_INSTALL_DIR "/usr/local/share/jade"
 #endif
 
-double jd_now_ms(void) { return jd_platform_time_ms(); }
 
 int jd_default_asset(char *out, size_t cap)
 {
@@ -104,7 +103,7 @@ static int mesh_path(jd_session *s, jd_options *o, const char *cmd)
 int jd_session_open_mesh(jd_session *s, jd_options *o, const char *cmd)
 {
     memset(s, 0, sizeof *s);
-    s->t_start_ms = jd_now_ms();
+    s->t_start_ms = jd_clock_ms();
     return mesh_path(s, o, cmd) && load_mesh(s, o, cmd);
 }
 
@@ -151,7 +150,7 @@ static int wait_for(jd_session *s, jd_options *o, const char *cmd, const jd_plat
 int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
 {
     memset(s, 0, sizeof *s);
-    s->t_start_ms = jd_now_ms();
+    s->t_start_ms = jd_clock_ms();
     jd_error err = {0};
     if (!mesh_path(s, o, cmd)) return 0;
     jd_platform_desc pd = {.kind = o->platform ? o->platform : "headless", .width = o->width, .height = o->height,

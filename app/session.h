@@ -3,6 +3,7 @@
 #ifndef JD_SESSION_H
 #define JD_SESSION_H
 
+#include "clock.h" /* jd_clock_ms: the one clock */
 #include "gl_caps.h"
 #include "options.h"
 #include "platform.h"
@@ -21,7 +22,6 @@ typedef struct jd_session {
     double t_start_ms;
 } jd_session;
 
-double jd_now_ms(void);
 /* Returns 0 after printing a one-line error. */
 int jd_session_open(jd_session *s, jd_options *o, const char *cmd);
 /* Only the mesh, for commands without a display (the reference). */

@@ -1,5 +1,6 @@
 /* Dispatch to the platform chosen at open, and what all of them share. */
 #include "backend.h"
+#include "clock.h"
 
 #include <signal.h>
 #include <stdio.h>
@@ -88,12 +89,8 @@ void jd_platform_present_stats(const jd_platform *p, jd_present_stats *st)
 const char *jd_platform_describe(const jd_platform *p) { return p->ops->describe(p->impl); }
 void *jd_platform_gl_proc(const char *name) { return (void *)eglGetProcAddress(name); }
 
-double jd_platform_time_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
+/* The core's monotonic clock: every figure jade prints comes from one. */
+double jd_platform_time_ms(void) { return jd_clock_ms(); }
 
 jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err)
 {

@@ -12,8 +12,10 @@ run() { # run PLATFORM SIGNAL[+SIGNAL: a second one right after] [env...]
     env "$@" "$jade" kiosk --platform "$plat" --size 160x120 > "$out/kiosk_$plat.$sig$again.txt" 2>&1 &
     pid=$!
     # Until it has drawn frames: start-up (decode, shaders) is not the point.
+    # Up to 60 s: on a loaded machine a start took over 10 s, and a SIGHUP
+    # sent before main() installs its handlers ends any process.
     i=0
-    while [ $i -lt 100 ] && ! grep -q "anti-aliasing" "$out/kiosk_$plat.$sig$again.txt"; do sleep 0.1; i=$((i + 1)); done
+    while [ $i -lt 600 ] && ! grep -q "anti-aliasing" "$out/kiosk_$plat.$sig$again.txt"; do sleep 0.1; i=$((i + 1)); done
     sleep 0.5
     kill -"$sig" "$pid"
     sent=$(date +%s%N)
@@ -61,9 +63,9 @@ printf '# test\nplatform = headless\nsize = 96x72\nmaterial = skin1\nlog-every =
 "$jade" kiosk --config "$conf" > "$out/kiosk_hup.out" 2> "$out/kiosk_hup.err" &
 pid=$!
 i=0
-while [ $i -lt 100 ] && ! grep -q "anti-aliasing" "$out/kiosk_hup.err"; do sleep 0.1; i=$((i + 1)); done
+while [ $i -lt 600 ] && ! grep -q "anti-aliasing" "$out/kiosk_hup.err"; do sleep 0.1; i=$((i + 1)); done
 hup() { printf "$1" > "$conf"; kill -HUP "$pid"; i=0; n=$2
-        while [ $i -lt 100 ] && [ "$(grep -c SIGHUP "$out/kiosk_hup.err")" -lt "$n" ]; do sleep 0.1; i=$((i + 1)); done; }
+        while [ $i -lt 300 ] && [ "$(grep -c SIGHUP "$out/kiosk_hup.err")" -lt "$n" ]; do sleep 0.1; i=$((i + 1)); done; }
 base='platform = headless\nsize = 96x72\nlog-every = 0.3\n'
 hup "${base}material = ketchup\n" 1
 hup "${base}material = ketchup\nbogus = 1\n" 3
@@ -107,7 +109,7 @@ if command -v Xvfb >/dev/null; then
         DISPLAY=":$d" "$jade" kiosk --platform x11 --idle 1 --log-every 0.5 > "$out/kiosk_drag.out" 2> "$out/kiosk_drag.err" &
         pid=$!
         i=0
-        while [ $i -lt 100 ] && ! grep -q "anti-aliasing" "$out/kiosk_drag.err"; do sleep 0.1; i=$((i + 1)); done
+        while [ $i -lt 600 ] && ! grep -q "anti-aliasing" "$out/kiosk_drag.err"; do sleep 0.1; i=$((i + 1)); done
         sleep 0.3
         DISPLAY=":$d" "$drag" jade 200 -60 > "$out/kiosk_drag.send" 2>&1
         i=0
