@@ -5,14 +5,15 @@
 
 #include "gl.h"
 
-int jd_gl_has_extension(const char *name)
+int jd_extension_listed(const char *list, const char *name)
 {
-    const char *all = (const char *)glGetString(GL_EXTENSIONS);
     size_t n = strlen(name);
-    for (const char *p = all; p && (p = strstr(p, name)) != NULL; p += n)
-        if ((p == all || p[-1] == ' ') && (p[n] == ' ' || p[n] == 0)) return 1;
+    for (const char *p = list; p && (p = strstr(p, name)) != NULL; p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == 0)) return 1;
     return 0;
 }
+
+int jd_gl_has_extension(const char *name) { return jd_extension_listed((const char *)glGetString(GL_EXTENSIONS), name); }
 
 static void copy_str(char *dst, size_t cap, GLenum what)
 {

@@ -29,6 +29,10 @@ typedef struct jd_gl_caps {
 /* proc returns GL entry points by name (from the platform); may be NULL. */
 jd_result jd_gl_caps_query(jd_gl_caps *caps, jd_error *err);
 int jd_gl_has_extension(const char *name);
+/* Whether a space-separated extension list (GL's, or EGL's from
+ * eglQueryString) names `name` as a whole word; list may be NULL. The one
+ * extension search of jade and its platforms. */
+int jd_extension_listed(const char *list, const char *name);
 
 /* Whether mediump fragment arithmetic really runs at 16 bits here, by a
  * canary shader that no compiler can fold: 1 yes, 0 no (32 bits: e.g.

@@ -2,6 +2,7 @@
  * EGL device platform (NVIDIA), then the default display with a pbuffer.
  * Frames go to an offscreen framebuffer object of the requested size. */
 #include "backend.h"
+#include "gl_caps.h" /* jd_extension_listed */
 
 #include <stdio.h>
 #include <string.h>
@@ -27,14 +28,6 @@ struct jd_platform_headless {
 typedef struct jd_platform_headless jd_headless;
 static jd_headless g_headless; /* one context per process is all jade needs */
 
-static int has_ext(const char *list, const char *name)
-{
-    size_t n = strlen(name);
-    for (const char *p = list; p && (p = strstr(p, name)); p += n)
-        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == 0)) return 1;
-    return 0;
-}
-
 /* Tries one display: initialise, pick an ES2 config, create a context and make
  * it current, surfaceless if the display allows, else on a 1x1 pbuffer. */
 static int try_display(jd_headless *p, EGLDisplay dpy, const char *how)
@@ -43,7 +36,7 @@ static int try_display(jd_headless *p, EGLDisplay dpy, const char *how)
     EGLint major, minor;
     if (!eglInitialize(dpy, &major, &minor)) return 0;
     const char *exts = eglQueryString(dpy, EGL_EXTENSIONS);
-    int surfaceless = has_ext(exts, "EGL_KHR_surfaceless_context");
+    int surfaceless = jd_extension_listed(exts, "EGL_KHR_surfaceless_context");
     const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES2_BIT,
                                EGL_SURFACE_TYPE, surfaceless ? 0 : EGL_PBUFFER_BIT,
                                EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE};
@@ -83,13 +76,13 @@ static int open_any_display(jd_headless *p)
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display =
         (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
-    if (get_platform_display && has_ext(client, "EGL_MESA_platform_surfaceless") &&
+    if (get_platform_display && jd_extension_listed(client, "EGL_MESA_platform_surfaceless") &&
         try_display(p, get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, no_attribs),
                     "surfaceless"))
         return 1;
     PFNEGLQUERYDEVICESEXTPROC query_devices =
         (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
-    if (get_platform_display && query_devices && has_ext(client, "EGL_EXT_platform_device")) {
+    if (get_platform_display && query_devices && jd_extension_listed(client, "EGL_EXT_platform_device")) {
         EGLDeviceEXT devs[8];
         EGLint n = 0;
         if (query_devices(8, devs, &n))
@@ -147,7 +140,7 @@ static jd_result headless_open(const jd_platform_desc *desc, void **out, jd_erro
         (PFNGLRENDERBUFFERSTORAGEMULTISAMPLEEXTPROC)eglGetProcAddress("glRenderbufferStorageMultisampleEXT");
     PFNGLFRAMEBUFFERTEXTURE2DMULTISAMPLEEXTPROC texture_ms =
         (PFNGLFRAMEBUFFERTEXTURE2DMULTISAMPLEEXTPROC)eglGetProcAddress("glFramebufferTexture2DMultisampleEXT");
-    if (!desc->single_sample && has_ext(gl_exts, "GL_EXT_multisampled_render_to_texture") && storage_ms && texture_ms) {
+    if (!desc->single_sample && jd_extension_listed(gl_exts, "GL_EXT_multisampled_render_to_texture") && storage_ms && texture_ms) {
         storage_ms(GL_RENDERBUFFER, 4, GL_DEPTH_COMPONENT16, tw, th);
         texture_ms(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, p->color, 0, 4);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, p->depth);

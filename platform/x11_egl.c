@@ -1,5 +1,6 @@
 /* A desktop window through EGL on X11: jade's emulator for developers. */
 #include "backend.h"
+#include "gl_caps.h" /* jd_extension_listed */
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,7 +41,7 @@ static EGLDisplay egl_display_for(Display *dpy)
     PFNEGLGETPLATFORMDISPLAYEXTPROC get =
         (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
     static const EGLint no_attribs[] = {EGL_NONE};
-    if (get && client && strstr(client, "EGL_EXT_platform_x11")) return get(EGL_PLATFORM_X11_KHR, dpy, no_attribs);
+    if (get && jd_extension_listed(client, "EGL_EXT_platform_x11")) return get(EGL_PLATFORM_X11_KHR, dpy, no_attribs);
     return eglGetDisplay((EGLNativeDisplayType)dpy);
 }
 

@@ -30,6 +30,7 @@ int main()
         FN(jd_dipole_rd),
         FN(jd_dipole_rd_total),
         FN(jd_dipole_tail),
+        FN(jd_extension_listed),
         FN(jd_fail),
         FN(jd_gl_caps_query),
         FN(jd_gl_has_extension),
@@ -127,6 +128,7 @@ int main()
     jd_scene_defaults(&s, jd_material_find("marble"));
     ok = ok && s.mode == JD_MODE_FULL;
     ok = ok && jd_platform_time_ms() > 0.0;
+    ok = ok && jd_extension_listed("GL_OES_a GL_OES_ab", "GL_OES_ab") && !jd_extension_listed("GL_OES_abc", "GL_OES_ab");
     std::printf("api: %d public functions linked from C++, the GL-free ones called: %s\n", linked, ok ? "ok" : "FAILED");
     return linked == (int)(sizeof all / sizeof all[0]) && ok ? 0 : 1;
 }
