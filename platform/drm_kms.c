@@ -3,6 +3,7 @@
  * vblank events; the original CRTC is put back on close. */
 #include "backend.h"
 #include "drm_select.h"
+#include "egl_setup.h"
 #include "input.h"
 
 #include <errno.h>
@@ -357,27 +358,6 @@ static struct gbm_surface *make_gbm_surface(drm_platform *p, uint32_t format)
     return s;
 }
 
-/* EGL's config must carry the GBM surface's format as its visual; among
- * those, one with 4x multisampling is preferred (on the tile-based GPUs of
- * kiosks it costs next to nothing, and the renderer then needs no
- * anti-aliasing pass of its own). */
-static EGLConfig match_config(EGLDisplay dpy, uint32_t format, int max_samples)
-{
-    const EGLint attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES2_BIT, EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_RED_SIZE, 8,
-                           EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 16, EGL_NONE};
-    EGLConfig cfgs[64], best = NULL;
-    EGLint n = 0, best_samples = -1;
-    if (!eglChooseConfig(dpy, attr, cfgs, 64, &n)) return NULL;
-    for (EGLint i = 0; i < n; i++) {
-        EGLint id = 0, samples = 0;
-        if (!eglGetConfigAttrib(dpy, cfgs[i], EGL_NATIVE_VISUAL_ID, &id) || (uint32_t)id != format) continue;
-        eglGetConfigAttrib(dpy, cfgs[i], EGL_SAMPLES, &samples);
-        if (samples > max_samples) continue;
-        if (samples > best_samples) { best = cfgs[i]; best_samples = samples; }
-    }
-    return best;
-}
-
 /* The kernel's uevents, to follow the display when it is unplugged, comes
  * back or changes its modes: read straight from the kernel, since kiosks
  * often run without a udev daemon. Without the socket the kiosk still
@@ -548,12 +528,12 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
     EGLint major, minor;
     if (p->edpy == EGL_NO_DISPLAY || !eglInitialize(p->edpy, &major, &minor) || !eglBindAPI(EGL_OPENGL_ES_API))
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: EGL cannot use the GBM device", p->device));
-    EGLConfig cfg = p->cfg = match_config(p->edpy, p->format, desc->single_sample ? 1 : 4);
+    /* The config must carry the GBM surface's format as its visual. */
+    EGLConfig cfg = p->cfg = jd_egl_window_config(p->edpy, desc->single_sample, (EGLint)p->format);
     if (!cfg)
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: no EGL config matches the GBM format %s", p->device,
                                     p->format == GBM_FORMAT_XRGB8888 ? "XRGB8888" : "ARGB8888"));
-    const EGLint ctx_attr[] = {EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE};
-    p->ctx = eglCreateContext(p->edpy, cfg, EGL_NO_CONTEXT, ctx_attr);
+    p->ctx = jd_egl_es2_context(p->edpy, cfg);
     p->surf = eglCreateWindowSurface(p->edpy, cfg, (EGLNativeWindowType)p->gbm_surface, no_attribs);
     if (p->ctx == EGL_NO_CONTEXT || p->surf == EGL_NO_SURFACE || !eglMakeCurrent(p->edpy, p->surf, p->surf, p->ctx))
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: cannot make a GLES 2.0 context current on GBM (0x%x)",

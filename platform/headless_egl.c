@@ -2,6 +2,7 @@
  * EGL device platform (NVIDIA), then the default display with a pbuffer.
  * Frames go to an offscreen framebuffer object of the requested size. */
 #include "backend.h"
+#include "egl_setup.h"
 #include "gl_caps.h" /* jd_extension_listed */
 
 #include <stdio.h>
@@ -46,8 +47,7 @@ static int try_display(jd_headless *p, EGLDisplay dpy, const char *how)
         eglTerminate(dpy);
         return 0;
     }
-    const EGLint ctx_attr[] = {EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE};
-    EGLContext ctx = eglCreateContext(dpy, cfg, EGL_NO_CONTEXT, ctx_attr);
+    EGLContext ctx = jd_egl_es2_context(dpy, cfg);
     if (ctx == EGL_NO_CONTEXT) { eglTerminate(dpy); return 0; }
     EGLSurface surf = EGL_NO_SURFACE;
     if (!surfaceless) {

@@ -1,5 +1,6 @@
 /* A desktop window through EGL on X11: jade's emulator for developers. */
 #include "backend.h"
+#include "egl_setup.h"
 #include "gl_caps.h" /* jd_extension_listed */
 
 #include <stdio.h>
@@ -87,16 +88,8 @@ static jd_result x11_open(const jd_platform_desc *desc, void **out, jd_error *er
     }
     /* 4x multisampling where a config has it (the renderer then needs no
      * anti-aliasing pass of its own), else none. */
-    const EGLint cfg_msaa[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES2_BIT, EGL_SURFACE_TYPE, EGL_WINDOW_BIT,
-                               EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 16,
-                               EGL_SAMPLE_BUFFERS, 1, EGL_SAMPLES, 4, EGL_NONE};
-    const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES2_BIT, EGL_SURFACE_TYPE, EGL_WINDOW_BIT,
-                               EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 16, EGL_NONE};
-    EGLConfig cfg;
-    EGLint n = 0;
-    if (!eglBindAPI(EGL_OPENGL_ES_API) ||
-        ((desc->single_sample || !eglChooseConfig(p->edpy, cfg_msaa, &cfg, 1, &n) || n < 1) &&
-         (!eglChooseConfig(p->edpy, cfg_attr, &cfg, 1, &n) || n < 1))) {
+    EGLConfig cfg = jd_egl_window_config(p->edpy, desc->single_sample, 0);
+    if (!cfg) {
         x11_close(p);
         return jd_fail(err, JD_ERR_PLATFORM, "no EGL config with RGB8, 16-bit depth and GLES 2.0 on '%s'", name);
     }
@@ -140,8 +133,7 @@ static jd_result x11_open(const jd_platform_desc *desc, void **out, jd_error *er
     /* An empty list, never NULL: some drivers read it unchecked. */
     static const EGLint no_attribs[] = {EGL_NONE};
     p->surf = eglCreateWindowSurface(p->edpy, cfg, (EGLNativeWindowType)p->win, no_attribs);
-    const EGLint ctx_attr[] = {EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE};
-    p->ctx = eglCreateContext(p->edpy, cfg, EGL_NO_CONTEXT, ctx_attr);
+    p->ctx = jd_egl_es2_context(p->edpy, cfg);
     if (p->surf == EGL_NO_SURFACE || p->ctx == EGL_NO_CONTEXT || !eglMakeCurrent(p->edpy, p->surf, p->surf, p->ctx)) {
         x11_close(p);
         return jd_fail(err, JD_ERR_PLATFORM, "cannot make a GLES 2.0 context current on an X window (0x%x)",
