@@ -526,7 +526,7 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
     static const EGLint no_attribs[] = {EGL_NONE};
     p->edpy = get ? get(EGL_PLATFORM_GBM_KHR, p->gbm, no_attribs) : eglGetDisplay((EGLNativeDisplayType)p->gbm);
     EGLint major, minor;
-    if (p->edpy == EGL_NO_DISPLAY || !eglInitialize(p->edpy, &major, &minor) || !eglBindAPI(EGL_OPENGL_ES_API))
+    if (p->edpy == EGL_NO_DISPLAY || !eglInitialize(p->edpy, &major, &minor)) /* the API: jd_egl_window_config */
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: EGL cannot use the GBM device", p->device));
     /* The config must carry the GBM surface's format as its visual. */
     EGLConfig cfg = p->cfg = jd_egl_window_config(p->edpy, desc->single_sample, (EGLint)p->format);

@@ -52,6 +52,14 @@ int jd_drm_parse_mode(const char *s, int *w, int *h, int *hz)
     return sscanf(s, "%dx%d%c", w, h, &extra) == 2 && *w > 0 && *h > 0;
 }
 
+/* Whether mode a beats b (NULL: nothing yet) as "the largest, then the
+ * fastest". */
+static int larger(const jd_drm_mode *a, const jd_drm_mode *b)
+{
+    long area = (long)a->w * a->h, best = b ? (long)b->w * b->h : -1;
+    return area > best || (area == best && a->hz > b->hz);
+}
+
 int jd_drm_pick_mode(const jd_drm_mode *m, int n, int w, int h, int hz)
 {
     int best = -1;
@@ -62,8 +70,7 @@ int jd_drm_pick_mode(const jd_drm_mode *m, int n, int w, int h, int hz)
             continue;
         }
         if (m[i].preferred) return i;
-        long area = (long)m[i].w * m[i].h, best_area = best < 0 ? -1 : (long)m[best].w * m[best].h;
-        if (area > best_area || (area == best_area && m[i].hz > m[best].hz)) best = i;
+        if (larger(&m[i], best < 0 ? NULL : &m[best])) best = i;
     }
     return best;
 }
@@ -92,10 +99,7 @@ jd_drm_follow jd_drm_follow_connector(const jd_drm_connector *now, int lost, int
         m = -1;
         for (int i = 0; i < now->num_modes; i++) {
             const jd_drm_mode *c = &now->modes[i];
-            if (c->w > max_w || c->h > max_h) continue;
-            if (m < 0 || (long)c->w * c->h > (long)now->modes[m].w * now->modes[m].h ||
-                ((long)c->w * c->h == (long)now->modes[m].w * now->modes[m].h && c->hz > now->modes[m].hz))
-                m = i;
+            if (c->w <= max_w && c->h <= max_h && larger(c, m < 0 ? NULL : &now->modes[m])) m = i;
         }
         note = " (the largest mode within the size jade started with)";
         if (m < 0) {
