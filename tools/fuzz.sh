@@ -26,7 +26,7 @@ run() {
     # From the build folder: the decoder's child processes, whose stderr
     # libFuzzer closes, leave their sanitizer reports (.PID files) there.
     top=$(pwd)
-    (cd "$dir" && "./$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -close_fd_mask=3 \
+    (cd "$dir" && "./$t" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=2048 -close_fd_mask=3 \
         -print_final_stats=1 -artifact_prefix="findings/$t-" \
         "corpus-$t" "$top/tests/fuzz/corpus/$t") >"$dir/$t.log" 2>&1
     rc=$?
