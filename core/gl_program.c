@@ -76,7 +76,7 @@ static const char *skip_version(const char *text)
 }
 
 /* Fragment shaders get a default precision (highp only where the packing
- * asks for it and the device has it); every shader gets the packing helpers
+ * asks for it and the device has it) and JD_FRAGMENT; every shader gets the packing helpers
  * as source string 1 and the light-map helpers as string 2; the shader's own
  * file is string 0, its lines numbered as in the file. */
 static jd_result compile(GLenum type, const char *name, const char *defines, GLuint *out,
@@ -91,7 +91,7 @@ static jd_result compile(GLenum type, const char *name, const char *defines, GLu
     parts[n++] = "#version 100\n";
     parts[n++] = defines ? defines : "";
     if (type == GL_FRAGMENT_SHADER)
-        parts[n++] = "#if JD_PACK_HIGHP\nprecision highp float;\nprecision highp sampler2D;\n#else\n"
+        parts[n++] = "#define JD_FRAGMENT 1\n#if JD_PACK_HIGHP\nprecision highp float;\nprecision highp sampler2D;\n#else\n"
                      "precision mediump float;\nprecision mediump sampler2D;\n#endif\n"
                      "#line 1 1\n";
     else

@@ -55,7 +55,7 @@ typedef struct shade_prog {
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */
 typedef struct diff_prog {
     GLuint id;
-    GLint src, ref, ref_scale, step, w, uv_scale, near;
+    GLint src, ref, ref_scale, step, taps, w, uv_scale, near;
 } diff_prog;
 
 #define TAIL_SIZE 256
@@ -398,6 +398,7 @@ static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_err
     p->ref = glGetUniformLocation(p->id, "u_ref");
     p->ref_scale = glGetUniformLocation(p->id, "u_ref_scale");
     p->step = glGetUniformLocation(p->id, "u_step");
+    p->taps = glGetUniformLocation(p->id, "u_taps");
     p->w = glGetUniformLocation(p->id, "u_w");
     p->uv_scale = glGetUniformLocation(p->id, "u_uv_scale");
     p->near = glGetUniformLocation(p->id, "u_near");
@@ -1034,7 +1035,7 @@ static jd_result build_projection_quads(jd_renderer *r, jd_arena *a, jd_error *e
                 int cx = corners[c][0], cy = corners[c][1];
                 float attr[PROJECT_FLOATS] = {
                     (x0 + (float)(cx * nb)) / W * 2.0f - 1.0f, (y0 + (float)(cy * nb)) / H * 2.0f - 1.0f,
-                    p.c[0], p.c[1], p.c[2], p.c[3], p.c[4], p.c[5], d == 1 ? 1.0f : 0.0f, d == 2 ? 1.0f : 0.0f,
+                    p.c[0], p.c[1], p.c[2], p.c[3], p.c[4], p.c[5], 0.5f * (float)(3 + d), 0.0f,
                     ch == 0 ? 1.0f : 0.0f, ch == 1 ? 1.0f : 0.0f, ch == 2 ? 1.0f : 0.0f,
                     /* the block's first sample, at pixel centres: corner + 0.5 - B/2 + n across */
                     fx + 0.5f - 0.5f * (float)B + (float)(cx * n), fy + 0.5f - 0.5f * (float)B + (float)(cy * n), fx, fy};
@@ -1295,9 +1296,13 @@ static void pass_diffusion(jd_renderer *r, const frame_params *f)
             glUniform2f(p->ref_scale, 1.0f / (float)to->w, 1.0f / (float)to->h);
             glUniform2f(p->uv_scale, (float)from->w / from->tw, (float)from->h / from->th);
             glUniform2f(p->step, pass ? 0.0f : step / (float)from->tw, pass ? step / (float)from->th : 0.0f);
-            float w[DIFF_TAPS + 1];
-            for (int i = 0; i <= DIFF_TAPS; i++) w[i] = expf(-(float)(i * i) / (2.0f * st * st));
-            glUniform1fv(p->w, DIFF_TAPS + 1, w);
+            /* Taps out to 3 sigma, no more: the narrow first levels
+             * read a third of the texels of the widest. */
+            int taps = (int)fminf(ceilf(3.0f * st), (float)DIFF_TAPS);
+            float w[2 * DIFF_TAPS + 1];
+            for (int i = 0; i <= 2 * taps; i++) w[i] = expf(-(float)((i - taps) * (i - taps)) / (2.0f * st * st));
+            glUniform1i(p->taps, taps);
+            glUniform1fv(p->w, 2 * taps + 1, w);
             glUniform1f(p->near, near);
             glBindTexture(GL_TEXTURE_2D, from->tex);
             draw_quad_into(r, to);

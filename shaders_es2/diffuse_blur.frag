@@ -17,8 +17,8 @@ uniform sampler2D u_src;
 uniform sampler2D u_ref;    // the light-depth map: each texel's own lit surface
 uniform vec2 u_ref_scale;   // fragment coordinates to the light map's
 uniform vec2 u_step;        // texel offset between taps, along the blur direction
-uniform float u_w[JD_TAPS + 1]; // the Gaussian's weight 0, 1, ... taps away: an exp per tap
-                            // and fragment kept more of lima's registers busy
+uniform int u_taps;         // taps on each side of the centre for this level, 1..JD_TAPS
+uniform float u_w[2 * JD_TAPS + 1]; // the Gaussian's weights, tap 0 (-u_taps) to 2 u_taps
 uniform float u_near;       // light-depth units that still count as this texel's surface
 varying vec2 v_uv;
 
@@ -30,33 +30,51 @@ vec2 part(vec2 a, float wsum, float other)
     return vec2(sqrt(a.x / wsum), a.x > 0.0001 * wsum ? clamp(a.y / a.x, 0.0, 0.998) : other);
 }
 
+// One tap of weight w into the near and far sums: (w S, w S z) of each
+// part, written as whole-vector operations (lima spilled where NIR built
+// vectors out of scalars).
+#if JD_FIRST
+void tap(vec2 uv, float w, float zr, inout vec2 near, inout vec2 far, inout float wsum)
+{
+    vec4 t = texture2D(u_src, uv);
+    float z = jd_unpack(t), lit = w * step(z, 0.998);
+    vec2 ws = (lit * t.a * t.a) * vec2(1.0, z), wn = ws * step(abs(z - zr), u_near);
+    near += wn;
+    far += ws - wn;
+    wsum += lit;
+}
+#else
+// Each texel holds two parts, (sqrt S, z, sqrt S, z): the sums keep them
+// apart, (part 1, part 2), and are added at the end.
+void tap(vec2 uv, float w, float zr, inout vec2 near, inout vec2 far, inout float wsum)
+{
+    vec4 t = texture2D(u_src, uv), z = t.yyww;
+    vec4 ws = (w * t.xxzz * t.xxzz * step(z, vec4(0.998))) * (t * vec4(0.0, 1.0, 0.0, 1.0) + vec4(1.0, 0.0, 1.0, 0.0));
+    vec4 wn = ws * step(abs(z - zr), vec4(u_near)), wf = ws - wn;
+    near += wn.xy + wn.zw;
+    far += wf.xy + wf.zw;
+    wsum += w * step(min(t.y, t.w), 0.998);
+}
+#endif
+
 void main()
 {
     float zr = jd_unpack(texture2D(u_ref, gl_FragCoord.xy * u_ref_scale));
-    // Without branches, whole-vector sums: near w S, near w S z, far w S,
-    // far w S z. (Written first with a branch per part and an exp per tap,
-    // lima took 594 instructions and spilled 75:343; vc4 1,336.)
-    vec4 acc = vec4(0.0);
     // Normalised convolution on the light's coverage: near the object's
     // outline as the light sees it there is lit surface on one side and
     // nothing (not dark surface) on the other.
+    vec2 near = vec2(0.0), far = vec2(0.0);
     float wsum = 0.0;
-    for (int i = -JD_TAPS; i <= JD_TAPS; i++) {
-        float x = float(i);
-        vec4 t = texture2D(u_src, v_uv + x * u_step);
-        float w = u_w[i < 0 ? -i : i];
-#if JD_FIRST
-        float z = jd_unpack(t);
-        float ws = w * t.a * t.a * step(z, 0.998), wn = ws * step(abs(z - zr), u_near);
-        acc += vec4(wn, wn * z, ws - wn, (ws - wn) * z);
-        wsum += w * step(z, 0.998);
-#else
-        float ws1 = w * t.r * t.r * step(t.g, 0.998), wn1 = ws1 * step(abs(t.g - zr), u_near);
-        float ws2 = w * t.b * t.b * step(t.a, 0.998), wn2 = ws2 * step(abs(t.a - zr), u_near);
-        acc += vec4(wn1 + wn2, wn1 * t.g + wn2 * t.a, ws1 - wn1 + ws2 - wn2, (ws1 - wn1) * t.g + (ws2 - wn2) * t.a);
-        wsum += w * step(min(t.g, t.a), 0.998);
-#endif
+    // A loop the compilers keep as a loop: its trip count is a uniform, and
+    // its constant bound (GLSL ES 1.00 wants one) is past what Mesa's NIR
+    // unrolls (32). Unrolled, every tap's texel and coordinates were live
+    // at once and lima spilled 12:80 of its 6 vec4 registers (322
+    // instructions); one tap per pass round the loop, 0 spills and 69.
+    for (int i = 0; i <= 64; i++) {
+        if (i > 2 * u_taps) break;
+        tap(v_uv + (float(i) - float(u_taps)) * u_step, u_w[i], zr, near, far, wsum);
     }
+    vec4 acc = vec4(near, far);
     if (wsum <= 0.0) {
         gl_FragColor = vec4(0.0, 1.0, 0.0, 1.0);
     } else {

@@ -58,11 +58,24 @@ float jd_level_at(sampler2D lv, vec3 p, float n, float s, float slack, float lit
     vec2 f = fract(tc);
     vec2 b = (floor(tc) + 0.5) / n;
     float d = 1.0 / n;
-    float l00 = jd_level(texture2D(lv, b), p, s, slack, lit);
-    float l10 = jd_level(texture2D(lv, b + vec2(d, 0.0)), p, s, slack, lit);
-    float l01 = jd_level(texture2D(lv, b + vec2(0.0, d)), p, s, slack, lit);
-    float l11 = jd_level(texture2D(lv, b + vec2(d, d)), p, s, slack, lit);
-    return mix(mix(l00, l10, f.x), mix(l01, l11, f.x), f.y);
+    // A loop over the four texels, each one's bilinear weight |1 - o - f|.
+    // In a fragment stage it stays a loop: unrolled, lima held all four
+    // texels' values at once and spilled (6:29 in the wide pass). Its count
+    // must not look constant, or Mesa's NIR unrolls it: n > 0, so the break
+    // comes after 4. A vertex stage unrolls it (as a loop, vc4's vertex
+    // shader doubled in length).
+    float l = 0.0;
+#ifdef JD_FRAGMENT
+    for (int i = 0; i < 64; i++) {
+        if (float(i) >= 4.0 * step(0.0, n)) break;
+#else
+    for (int i = 0; i < 4; i++) {
+#endif
+        vec2 o = vec2(mod(float(i), 2.0), floor(float(i) * 0.5));
+        vec2 wt = abs(1.0 - o - f);
+        l += wt.x * wt.y * jd_level(texture2D(lv, b + o * d), p, s, slack, lit);
+    }
+    return l;
 }
 
 // The levels' sum at light-map position p (xy, depth): Rd's weight on each
@@ -78,4 +91,3 @@ vec3 jd_diffused(sampler2D lv0, sampler2D lv1, sampler2D lv2, sampler2D lv3, sam
                           + w[3] * jd_level(texture2D(lv3, p.xy), p, s[1].x, slack, lit)
                           + w[4] * jd_level(texture2D(lv4, p.xy), p, s[1].y, slack, lit));
 }
-

@@ -96,7 +96,15 @@ void main()
     float x = clamp(1.0 - dot(n, view), 0.0, 1.0);
     float x2 = x * x;
     float ft = 1.0 - (u_f0 + (1.0 - u_f0) * x2 * x2 * x); // Fresnel transmittance
-    v_trans = ft * u_a0_scale;
+    // With the fragment stage's constant factors: RGBM's 4 and, where the
+    // thickness is taken per fragment, the tail's 2 (left there, lima's
+    // compiler moved the whole product after its last texture read and held
+    // every operand live; it spilled).
+#if JD_VERTEX_THICKNESS
+    v_trans = ft * u_a0_scale * 4.0;
+#else
+    v_trans = ft * u_a0_scale * 8.0;
+#endif
 #if JD_VERTEX_THICKNESS
     float t = clamp(light.z - jd_unpack(texture2DLod(u_depth_v, light.xy, 0.0)), 0.0, 1.0);
     vec3 m = texture2DLod(u_tail_v, vec2(t, 0.5), 0.0).rgb;

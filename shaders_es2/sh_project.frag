@@ -7,7 +7,9 @@
 // On a face, the direction is w = (a + fx u + fy v) / sqrt(q), q = 1 + fx^2
 // + fy^2, so every Y_k is a quadratic polynomial in (fx, fy) over q^(d/2),
 // d = 0, 1 or 2; dw is 4/N^2 / q^(3/2). The rectangle's attributes carry
-// the polynomial and d (poly1.zw = (1, 0) for d = 1, (0, 1) for d = 2);
+// the polynomial and the power of q, poly1.z = (3 + d) / 2, taken as
+// exp2(-poly1.z log2 q): two operations per sample, as a reciprocal and a
+// square root were, but one value live instead of two (lima spilled 1:4);
 // the polynomial already holds 6/pi (4/N^2 * 6N^2/(4 pi)), 1/(B*B) for the
 // mean and 1/1.5 for the packing.
 uniform sampler2D u_atlas;     // 3N x 2N used, faces +X -X +Y / -Y +Z -Z
@@ -28,11 +30,8 @@ void main()
     // and Mali-400 take 2x2 blocks): one vector expression instead of four
     // scalar ones kept lima's registers from spilling.
     vec4 fx = f0.x + vec4(0.0, step, 0.0, step), fy = f0.y + vec4(0.0, 0.0, step, step);
-    vec4 inv = 1.0 / (1.0 + fx * fx + fy * fy);
-    vec4 rs = sqrt(inv);
-    vec4 y = v_poly0.x + v_poly0.y * fx + v_poly0.z * fy + v_poly0.w * fx * fx + (v_poly1.x * fy + v_poly1.y * fx) * fy;
-    vec4 power = inv * rs * (1.0 + v_poly1.z * (rs - 1.0) + v_poly1.w * (inv - 1.0));
-    vec4 w = y * power;
+    vec4 power = exp2(-v_poly1.z * log2(1.0 + fx * fx + fy * fy));
+    vec4 w = (v_poly0.x + v_poly0.y * fx + v_poly0.z * fy + v_poly0.w * fx * fx + (v_poly1.x * fy + v_poly1.y * fx) * fy) * power;
     vec3 c = texture2D(u_atlas, t0 * u_atlas_texel).rgb * w.x;
     c += texture2D(u_atlas, (t0 + vec2(1.0, 0.0)) * u_atlas_texel).rgb * w.y;
     c += texture2D(u_atlas, (t0 + vec2(0.0, 1.0)) * u_atlas_texel).rgb * w.z;
@@ -44,10 +43,8 @@ void main()
         for (int i = 0; i < JD_B; i++) {
             vec2 o = vec2(float(i), float(j));
             vec2 f = f0 + o * step;
-            float inv = 1.0 / (1.0 + dot(f, f));
-            float rs = sqrt(inv);
             float y = v_poly0.x + dot(v_poly0.yz, f) + v_poly0.w * f.x * f.x + (v_poly1.x * f.y + v_poly1.y * f.x) * f.y;
-            float power = inv * rs * (1.0 + v_poly1.z * (rs - 1.0) + v_poly1.w * (inv - 1.0));
+            float power = exp2(-v_poly1.z * log2(1.0 + dot(f, f)));
             float l = dot(texture2D(u_atlas, (t0 + o) * u_atlas_texel).rgb, v_channel);
             // Accumulate the mean directly: a raw sum of B*B terms would lose
             // low bits in fp16.

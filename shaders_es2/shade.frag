@@ -63,20 +63,28 @@ uniform vec3 u_ls[2];        // per level: depth units to sigma_k sqrt(2), level
 vec3 translucency()
 {
     vec4 e = textureCube(u_irr, v_dir);
-    vec3 trans = v_trans * e.rgb * (e.a * 4.0);
+    vec3 trans = v_trans * e.rgb * e.a; // v_trans carries the factors
 #if JD_VERTEX_THICKNESS
     return trans;
 #else
     float shadow = jd_unpack(texture2D(u_depth, v_light.xy));
     float t = clamp(v_light.z - shadow, 0.0, 1.0);
     vec3 m = texture2D(u_tail, vec2(t, 0.5)).rgb;
-    return 2.0 * m * m * trans;
+    return m * m * trans;
 #endif
 }
 #endif
 
 void main()
 {
+#if JD_SPREAD && !JD_A0_ONLY
+    // The spread layers are read first: read where they are used, the
+    // screen position's registers and theirs were live beside the
+    // translucency's reads and lima spilled 2:6. (Orders tried on lima's
+    // compiler, tools/device-shaders.sh; this one holds every variant
+    // within its six registers.)
+    vec4 sp = texture2D(u_spread, gl_FragCoord.xy * u_inv_viewport);
+#endif
     vec3 n = normalize(v_normal);
     vec3 v = normalize(u_eye - v_pos);
     if (dot(n, v) < 0.0) n = -n;
@@ -113,20 +121,18 @@ void main()
     vec3 col = u_albedo * (u_shading.x + ndl * vis * u_light_color) + u_shading.y * spec * u_light_color;
 #endif
 #if JD_TRANSLUCENT
+    vec3 a0 = translucency();
+#if JD_SPREAD
+    // w0 A0 + the spread layers; where the low-resolution layers did not
+    // reach (a silhouette pixel the proxy missed), A0 stands in for them:
+    // w0 A0 + (1 - w0) A0.
+    a0 = sp.a > 0.5 ? u_w0 * a0 + 2.0 * sp.rgb * sp.rgb : a0;
+#endif
     // At the silhouette the per-vertex A0 of a grazing vertex (its
     // refraction box-projected to wherever the capture is brightest) would
     // light single pixels that flicker as the light moves; the Fresnel
     // transmittance there is near zero anyway, per fragment.
-    vec3 a0 = translucency() * smoothstep(0.0, 0.25, dot(n, v));
-#if JD_SPREAD
-    vec4 sp = texture2D(u_spread, gl_FragCoord.xy * u_inv_viewport);
-    // Where the low-resolution layers did not reach (a silhouette pixel the
-    // proxy missed), A0 stands in for them.
-    vec3 spread = (sp.a > 0.5 ? 2.0 * sp.rgb * sp.rgb : (1.0 - u_w0) * a0) * smoothstep(0.0, 0.25, dot(n, v));
-    col += u_w0 * a0 + spread;
-#else
-    col += a0;
-#endif
+    col += a0 * smoothstep(0.0, 0.25, dot(n, v));
 #endif
     col *= u_shading.w;
     // Reinhard-style shoulder, then display gamma 2.0 (a sqrt is cheaper than
