@@ -221,6 +221,10 @@ static int make_renderer(jd_session *s, jd_options *o, const char *cmd)
         fprintf(stderr, "jade %s: %s: %s\n", cmd, s->mesh_path, err.msg);
         return 0;
     }
+    /* What this device cannot run, said once, before the first frame. */
+    jd_renderer_info info;
+    jd_renderer_get_info(s->renderer, &info);
+    if (info.fallback) fprintf(stderr, "jade %s: on this GPU: %s\n", cmd, info.fallback);
     return 1;
 }
 

@@ -1,6 +1,7 @@
 #include "renderer.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -8,6 +9,7 @@
 #include "diffusion_fit.h"
 #include "gl.h"
 #include "gl_program.h"
+#include "program_probe.h"
 #include "scene.h"
 #include "sh.h"
 #include "vmath.h"
@@ -81,6 +83,8 @@ struct jd_renderer {
     int post_aa;          /* frames go to `scene`, then through the anti-aliasing pass */
     int sh_block;         /* capture texels per SH projection pixel, per side (8, or 2 on small register files) */
     int sh_mid;           /* > 1: an intermediate reduction by sh_mid x sh_mid, so no pass sums over 64 texels */
+    jd_mode shown[JD_MODE_COUNT]; /* what a frame asking for each mode draws (build_programs) */
+    char fallback[1024];  /* what this device could not run, and what it gets instead; "" */
     jd_mesh proxy, capture_proxy;
     GLuint mesh_vbo, mesh_ibo, proxy_vbo, proxy_ibo, cap_vbo, cap_ibo, quad_vbo;
     GLuint project_vbo;   /* the SH projection's 6 x 27 rectangles, with their constants */
@@ -405,52 +409,47 @@ static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_err
     return JD_OK;
 }
 
-static jd_result build_programs(jd_renderer *r, jd_error *err)
+static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
 {
     char def[512];
-    int n = r->d.cube_size, nb = n / r->sh_block;
-    jd_result res;
-    for (int m = 0; m < JD_MODE_COUNT; m++) {
-        int translucent = m == JD_MODE_SINGLE || m == JD_MODE_DUAL;
-        snprintf(def, sizeof def,
-                 "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
-                 "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
-                 "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n",
-                 r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
-                 m == JD_MODE_FULL && !r->vertex_diffusion);
-        /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_wide] */
-        int varyings = translucent ? (r->vertex_thickness ? 5 : 6) : 3 + (m == JD_MODE_FULL && r->vertex_diffusion);
-        if ((res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
-                         &r->shade[m].id, err)))
-            return res;
-        shade_locations(&r->shade[m]);
-    }
+    int translucent = m == JD_MODE_SINGLE || m == JD_MODE_DUAL;
     snprintf(def, sizeof def,
-             "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n"
-             "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL 0\n#define JD_VERTEX_DIFFUSION 0\n"
-             "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 0\n",
-             r->highp, r->vertex_thickness);
-    if ((res = build(r, r->vertex_thickness ? 5 : 6, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
-                     mesh_attribs, &r->a0.id, err)))
-        return res;
-    shade_locations(&r->a0);
-    if (!r->vertex_diffusion) {
-        snprintf(def, sizeof def,
-                 "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 0\n#define JD_SPREAD 0\n#define JD_A0_ONLY 0\n"
-                 "#define JD_VERTEX_THICKNESS 0\n#define JD_FULL 1\n#define JD_VERTEX_DIFFUSION 0\n"
-                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n",
-                 r->highp);
-        if ((res = build(r, 3, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
-                         err)))
-            return res;
-        shade_locations(&r->wide_prog);
-    }
+             "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
+             "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
+             "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n",
+             r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
+             m == JD_MODE_FULL && !r->vertex_diffusion);
+    /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_wide] */
+    int varyings = translucent ? (r->vertex_thickness ? 5 : 6) : 3 + (m == JD_MODE_FULL && r->vertex_diffusion);
+    jd_result res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
+                          &r->shade[m].id, err);
+    if (res == JD_OK) shade_locations(&r->shade[m]);
+    return res;
+}
 
+/* What every mode needs: the light depth and the plain shading. */
+static jd_result build_base(jd_renderer *r, jd_error *err)
+{
+    char def[64];
+    jd_result res = build_shade(r, JD_MODE_NONE, err);
+    if (res) return res;
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n", r->highp);
-    if ((res = build(r, 2, "shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err))) return res;
+    if ((res = build(r, 2, "shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err)))
+        return res;
     r->depth_mvp = glGetUniformLocation(r->depth_prog, "u_light_mvp");
     r->depth_light_dir = glGetUniformLocation(r->depth_prog, "u_light_dir");
     r->depth_f0 = glGetUniformLocation(r->depth_prog, "u_f0");
+    return JD_OK;
+}
+
+/* single (and dual): the capture, its SH reduction, the irradiance map. */
+static jd_result build_sh(jd_renderer *r, jd_error *err)
+{
+    char def[256];
+    int n = r->d.cube_size, nb = n / r->sh_block;
+    jd_result res = build_shade(r, JD_MODE_SINGLE, err);
+    if (res) return res;
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n", r->highp);
     if ((res = build(r, 2, "shaders_es2/capture.vert", "shaders_es2/capture.frag", def, mesh_attribs, &r->capture_prog, err)))
         return res;
     r->cap_mvp = glGetUniformLocation(r->capture_prog, "u_mvp");
@@ -494,6 +493,24 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     r->irr_src = glGetUniformLocation(r->irr_prog, "u_src");
     r->irr_size = glGetUniformLocation(r->irr_prog, "u_size");
     r->irr_face = glGetUniformLocation(r->irr_prog, "u_face");
+    return JD_OK;
+}
+
+/* dual: A0 at low resolution and its two blurs. */
+static jd_result build_spread(jd_renderer *r, jd_error *err)
+{
+    char def[512];
+    jd_result res = build_shade(r, JD_MODE_DUAL, err);
+    if (res) return res;
+    snprintf(def, sizeof def,
+             "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n"
+             "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL 0\n#define JD_VERTEX_DIFFUSION 0\n"
+             "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 0\n",
+             r->highp, r->vertex_thickness);
+    if ((res = build(r, r->vertex_thickness ? 5 : 6, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
+                     mesh_attribs, &r->a0.id, err)))
+        return res;
+    shade_locations(&r->a0);
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 0\n", BLUR_TAPS);
     if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->blur_prog, err))) return res;
     r->blur_src = glGetUniformLocation(r->blur_prog, "u_src");
@@ -510,15 +527,179 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
     r->comb_w1 = glGetUniformLocation(r->combine_prog, "u_w1");
     r->comb_w2 = glGetUniformLocation(r->combine_prog, "u_w2");
     r->comb_scale = glGetUniformLocation(r->combine_prog, "u_uv_scale");
-    if ((res = build_diffusion(r, 1, &r->diff_first, err)) || (res = build_diffusion(r, 0, &r->diff_next, err)))
-        return res;
-    if (r->post_aa) {
-        if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/antialias.frag", "#define JD_PACK_HIGHP 0\n",
-                         quad_attribs, &r->aa_prog, err)))
+    return JD_OK;
+}
+
+/* full: the light-space diffusion and, without vertex textures, the
+ * half-resolution sum of its levels. */
+static jd_result build_full(jd_renderer *r, jd_error *err)
+{
+    char def[512];
+    jd_result res = build_shade(r, JD_MODE_FULL, err);
+    if (res) return res;
+    if (!r->vertex_diffusion) {
+        snprintf(def, sizeof def,
+                 "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 0\n#define JD_SPREAD 0\n#define JD_A0_ONLY 0\n"
+                 "#define JD_VERTEX_THICKNESS 0\n#define JD_FULL 1\n#define JD_VERTEX_DIFFUSION 0\n"
+                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n",
+                 r->highp);
+        if ((res = build(r, 3, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
+                         err)))
             return res;
-        r->aa_src = glGetUniformLocation(r->aa_prog, "u_src");
-        r->aa_texel = glGetUniformLocation(r->aa_prog, "u_texel");
-        r->aa_scale = glGetUniformLocation(r->aa_prog, "u_uv_scale");
+        shade_locations(&r->wide_prog);
+    }
+    if ((res = build_diffusion(r, 1, &r->diff_first, err))) return res;
+    return build_diffusion(r, 0, &r->diff_next, err);
+}
+
+static jd_result build_antialias(jd_renderer *r, jd_error *err)
+{
+    if (!r->post_aa) return JD_OK;
+    jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/antialias.frag", "#define JD_PACK_HIGHP 0\n",
+                          quad_attribs, &r->aa_prog, err);
+    if (res) return res;
+    r->aa_src = glGetUniformLocation(r->aa_prog, "u_src");
+    r->aa_texel = glGetUniformLocation(r->aa_prog, "u_texel");
+    r->aa_scale = glGetUniformLocation(r->aa_prog, "u_uv_scale");
+    return JD_OK;
+}
+
+/* The programs by what needs them. A group that does not build, or builds
+ * and then draws nothing, takes away what needs it (a mode, the
+ * anti-aliasing pass), never the renderer; only the base is essential. */
+enum { GROUP_BASE, GROUP_SH, GROUP_SPREAD, GROUP_FULL, GROUP_AA, GROUP_COUNT };
+static const char *const group_what[GROUP_COUNT] = {"the shading every mode needs", "single and dual's SH",
+                                                     "dual's spread", "full's diffusion", "the anti-aliasing pass"};
+static jd_result (*const group_build[GROUP_COUNT])(jd_renderer *, jd_error *) = {
+    build_base, build_sh, build_spread, build_full, build_antialias};
+
+/* A group's program ids (0 where not built); returns how many. */
+static int group_programs(jd_renderer *r, int g, GLuint **out)
+{
+    int n = 0;
+    switch (g) {
+    case GROUP_BASE: out[n++] = &r->shade[JD_MODE_NONE].id; out[n++] = &r->depth_prog; break;
+    case GROUP_SH:
+        out[n++] = &r->shade[JD_MODE_SINGLE].id; out[n++] = &r->capture_prog; out[n++] = &r->project_prog;
+        out[n++] = &r->reduce_mid_prog; out[n++] = &r->reduce_faces_prog; out[n++] = &r->reduce_final_prog;
+        out[n++] = &r->irr_prog;
+        break;
+    case GROUP_SPREAD:
+        out[n++] = &r->shade[JD_MODE_DUAL].id; out[n++] = &r->a0.id; out[n++] = &r->blur_prog; out[n++] = &r->combine_prog;
+        break;
+    case GROUP_FULL:
+        out[n++] = &r->shade[JD_MODE_FULL].id; out[n++] = &r->wide_prog.id; out[n++] = &r->diff_first.id;
+        out[n++] = &r->diff_next.id;
+        break;
+    default: out[n++] = &r->aa_prog; break;
+    }
+    return n;
+}
+
+static void drop_group(jd_renderer *r, int g)
+{
+    GLuint *ids[8];
+    int n = group_programs(r, g, ids);
+    for (int i = 0; i < n; i++) {
+        if (*ids[i]) glDeleteProgram(*ids[i]);
+        *ids[i] = 0;
+    }
+}
+
+/* Appends to what start-up says of the fallbacks taken. */
+static void say(jd_renderer *r, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static void say(jd_renderer *r, const char *fmt, ...)
+{
+    size_t n = strlen(r->fallback);
+    if (n + 3 >= sizeof r->fallback) return;
+    if (n) { memcpy(r->fallback + n, "; ", 3); n += 2; }
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->fallback + n, sizeof r->fallback - n, fmt, ap);
+    va_end(ap);
+}
+
+/* Builds every group. A device whose compiler rejects a highp program gets
+ * the mediump packing for all of them (precision auto only); a group
+ * still failing is dropped and said. The probe then drops the groups with
+ * a program that draws nothing. Each mode is shown as itself or as the
+ * nearest cheaper mode whose groups are there: full as dual, dual as
+ * single, single as none. */
+static int build_groups(jd_renderer *r, int *ok, jd_error *gerr)
+{
+    int failed = 0;
+    for (int g = 0; g < GROUP_COUNT; g++) {
+        memset(&gerr[g], 0, sizeof gerr[g]);
+        ok[g] = group_build[g](r, &gerr[g]) == JD_OK;
+        failed += !ok[g];
+    }
+    return failed;
+}
+
+static void drop_groups(jd_renderer *r)
+{
+    for (int g = 0; g < GROUP_COUNT; g++) drop_group(r, g);
+}
+
+static jd_result build_programs(jd_renderer *r, jd_error *err)
+{
+    jd_error gerr[GROUP_COUNT];
+    int ok[GROUP_COUNT];
+    int failed = build_groups(r, ok, gerr);
+    if (failed && r->highp && r->d.precision == JD_PRECISION_AUTO) {
+        char first[sizeof gerr[0].msg] = "";
+        for (int g = 0; g < GROUP_COUNT && !first[0]; g++)
+            if (!ok[g]) memcpy(first, gerr[g].msg, sizeof first);
+        drop_groups(r);
+        r->highp = 0;
+        if (build_groups(r, ok, gerr) < failed) {
+            say(r, "highp packing: %s; mediump packing instead", first);
+        } else { /* no better: the packing the device is best at, and the same losses */
+            drop_groups(r);
+            r->highp = 1;
+            build_groups(r, ok, gerr);
+        }
+    }
+    if (!ok[GROUP_BASE]) return jd_fail(err, JD_ERR_UNSUPPORTED, "%s", gerr[GROUP_BASE].msg);
+    if (!r->d.no_program_probe) {
+        GLuint ids[JD_PROBE_MAX], *slot[JD_PROBE_MAX];
+        int owner[JD_PROBE_MAX], drawn[JD_PROBE_MAX], n = 0;
+        for (int g = 0; g < GROUP_COUNT; g++) {
+            if (!ok[g]) continue;
+            GLuint *p[8];
+            int k = group_programs(r, g, p);
+            for (int i = 0; i < k && n < JD_PROBE_MAX; i++, n++) {
+                slot[n] = p[i];
+                ids[n] = *p[i];
+                owner[n] = g;
+            }
+        }
+        if (jd_program_probe(ids, n, r->quad_vbo, drawn))
+            for (int i = 0; i < n; i++)
+                if (!drawn[i] && ok[owner[i]]) {
+                    ok[owner[i]] = 0;
+                    jd_fail(&gerr[owner[i]], JD_ERR_UNSUPPORTED,
+                            "program %u (%s) links but the driver draws nothing with it", *slot[i],
+                            group_what[owner[i]]);
+                }
+        if (!ok[GROUP_BASE]) return jd_fail(err, JD_ERR_UNSUPPORTED, "%s", gerr[GROUP_BASE].msg);
+    }
+    for (int g = 1; g < GROUP_COUNT; g++)
+        if (!ok[g]) {
+            drop_group(r, g);
+            say(r, "%s unavailable: %s", group_what[g], gerr[g].msg);
+        }
+    if (!ok[GROUP_AA]) r->post_aa = 0;
+    int have[JD_MODE_COUNT] = {1, ok[GROUP_SH], ok[GROUP_SH] && ok[GROUP_SPREAD], ok[GROUP_FULL]};
+    for (int m = 0; m < JD_MODE_COUNT; m++) {
+        int shown = m;
+        while (!have[shown]) shown = shown == JD_MODE_FULL ? JD_MODE_DUAL : shown - 1;
+        r->shown[m] = (jd_mode)shown;
+        if (shown != m) say(r, "%s frames are drawn as %s", jd_mode_name((jd_mode)m), jd_mode_name((jd_mode)shown));
     }
     return JD_OK;
 }
@@ -725,6 +906,8 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
 }
 void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
 {
+    for (int m = 0; m < JD_MODE_COUNT; m++) info->shown_as[m] = r->shown[m];
+    info->fallback = r->fallback[0] ? r->fallback : NULL;
     info->target_bytes = r->target_bytes;
     info->highp = r->highp;
     info->vertex_thickness = r->vertex_thickness;
@@ -1422,9 +1605,15 @@ static void gpu_collect(jd_renderer *r, jd_frame_stats *st)
     }
 }
 
-jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *stats, jd_error *err)
+jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *asked, jd_frame_stats *stats, jd_error *err)
 {
-    if (s->mode < 0 || s->mode >= JD_MODE_COUNT) return jd_fail(err, JD_ERR_ARG, "unknown mode %d", (int)s->mode);
+    if (asked->mode < 0 || asked->mode >= JD_MODE_COUNT)
+        return jd_fail(err, JD_ERR_ARG, "unknown mode %d", (int)asked->mode);
+    /* A mode this device cannot run is drawn as the cheaper one start-up
+     * chose and said. */
+    jd_scene shown = *asked;
+    shown.mode = r->shown[asked->mode];
+    const jd_scene *s = &shown;
     frame_params f;
     memset(&f, 0, sizeof f);
     frame_setup(r, s, &f);

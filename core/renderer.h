@@ -49,6 +49,9 @@ typedef struct jd_renderer_desc {
     /* Looks up GL extension entry points (the platform's); with it and
      * GL_EXT_disjoint_timer_query, timed frames also get GPU pass times. */
     void *(*get_proc)(const char *name);
+    /* Skip the start-up check that every program draws (two small
+     * read-backs): for compile-only runs on drivers that cannot read back. */
+    int no_program_probe;
 } jd_renderer_desc;
 
 /* What a frame shows. jd_scene_defaults fills a sensible one. */
@@ -151,6 +154,12 @@ typedef struct jd_renderer_info {
     int target_samples;       /* samples per pixel of the target (GL_SAMPLES) */
     int post_antialias;       /* the anti-aliasing pass runs after each frame */
     const jd_mesh *proxy;     /* the coarse mesh the light-space passes draw */
+    /* What a frame asking for each mode draws: the mode itself, or where
+     * this device's compiler rejected a program or its driver draws
+     * nothing with one, the nearest cheaper mode (full -> dual -> single ->
+     * none). */
+    jd_mode shown_as[JD_MODE_COUNT];
+    const char *fallback;     /* NULL, or one line: what was dropped, why, and what stands in */
 } jd_renderer_info;
 void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info);
 /* Reads back the last frame's capture atlas (3N x 2N RGBA8, rows bottom-up)
