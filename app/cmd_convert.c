@@ -65,6 +65,7 @@ int jd_cmd_convert(int argc, char **argv)
     }
     o.mesh = in;
     o.load.keep_face_order = 1; /* Draco's edgebreaker orders the faces its own way */
+    o.load.keep_uvs = 1;        /* a conversion keeps what the renderer would not use */
     jd_session s;
     if (!jd_session_open_mesh(&s, &o, "convert")) {
         jd_session_close(&s);

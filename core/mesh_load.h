@@ -24,6 +24,8 @@ typedef struct jd_load_desc {
     size_t decode_memory_bytes; /* [192 MiB] address space the decoder may add */
     int allow_32bit_indices;    /* the GL device has OES_element_index_uint */
     int keep_face_order;        /* [0: triangles reordered for the GPU's vertex cache and overdraw] */
+    int keep_uvs;               /* [0: texture coordinates are dropped in the decoder, the renderer has
+                                   no use for them] 1: jd_mesh.uvs has them (jade convert keeps them) */
     int format;                 /* set by the loader: the jd_mesh_format found in the file */
 } jd_load_desc;
 
