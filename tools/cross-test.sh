@@ -57,6 +57,22 @@ grep -q "DRACO_LIBRARY_DIRS:INTERNAL=$sysroot" build-aarch64-sysroot/CMakeCache.
     { echo "pkg-config did not resolve Draco inside the sysroot"; exit 1; }
 cmake --build build-aarch64-sysroot -j"$jobs" >/dev/null
 (cd build-aarch64-sysroot && ctest --output-on-failure -R '^(units|bad_inputs)$')
+# The examples against that build installed into the sysroot, as a board's
+# SDK would hold it (prefix /opt/jade inside it): examples/ with
+# find_package(jade) and the toolchain file, and embed.c with the cross
+# compiler and pkg-config pointed into the sysroot. Linked, not run: the
+# sysroot has no GL driver.
+rm -rf "$sysroot/opt/jade" build-aarch64-examples
+DESTDIR="$sysroot" cmake --install build-aarch64-sysroot --prefix /opt/jade >/dev/null
+cmake -S examples -B build-aarch64-examples -DCMAKE_TOOLCHAIN_FILE="$(pwd)/toolchains/aarch64-linux-gnu.cmake" \
+    -DJADE_SYSROOT="$sysroot" -DCMAKE_PREFIX_PATH=/opt/jade >/dev/null
+cmake --build build-aarch64-examples >/dev/null
+echo "examples/ against the sysroot's jade, find_package(jade): $(file build-aarch64-examples/embed | sed 's/.*: //; s/, BuildID.*//')"
+PKG_CONFIG_SYSROOT_DIR="$sysroot" \
+PKG_CONFIG_LIBDIR="$sysroot/opt/jade/lib/pkgconfig:$sysroot/usr/lib/aarch64-linux-gnu/pkgconfig:$sysroot/usr/share/pkgconfig" \
+    sh -c 'aarch64-linux-gnu-gcc --sysroot="$1" -std=c11 -Wall -Wextra -o build-aarch64-examples/embed_pc examples/embed.c \
+        $(pkg-config --cflags --libs jade egl glesv2)' sh "$sysroot"
+echo "examples/embed.c against the sysroot's jade, pkg-config: $(file build-aarch64-examples/embed_pc | sed 's/.*: //; s/, BuildID.*//')"
 
 if [ "${1:-}" = "--sizes" ]; then
     cmake -S . -B build-aarch64-static -DCMAKE_TOOLCHAIN_FILE=toolchains/aarch64-linux-gnu.cmake \
