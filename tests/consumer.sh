@@ -67,24 +67,31 @@ if command -v c++ >/dev/null; then
         fail=$((fail + 1)); echo "FAIL examples/embed.c (C++)"; cat "$tmp/log" "$tmp/out"
     fi
 fi
-# The README's C block, compiled against the installed headers inside a
-# function that declares what it uses: the front page's code cannot go stale.
-readme=$src/../README.md
-if [ -f "$readme" ]; then
-    { echo '#include <jade/jade.h>'
-      echo 'static unsigned char memory[1 << 20];'
-      echo 'int readme_snippet(const void *bytes, size_t size, unsigned fbo, int w, int h);'
-      echo 'int readme_snippet(const void *bytes, size_t size, unsigned fbo, int w, int h) {'
-      echo '    jd_arena arena; jd_error err; jd_mesh mesh; jd_gl_caps caps; jd_renderer *r; jd_scene scene;'
-      awk '/^```c$/ { on = 1; next } on && /^```$/ { exit } on && !/^#include/' "$readme"
-      echo '    jd_renderer_destroy(r);'
-      echo '    return err.code;'
-      echo '}'; } > "$tmp/snippet.c"
-    if cc -std=c11 -Wall -Wextra -Werror -c -o "$tmp/snippet.o" "$tmp/snippet.c" $(pkg-config --cflags jade) >"$tmp/log" 2>&1; then
-        pass=$((pass + 1)); echo "ok   the README's C block compiles against the installed headers ($(grep -c . "$tmp/snippet.c") lines)"
-    else
-        fail=$((fail + 1)); echo "FAIL the README's C block"; cat "$tmp/log"
-    fi
-fi
+# Every C block of the README and docs/*.md, compiled against the installed
+# headers inside a function that declares what they use: code shown to
+# users cannot go stale (tests/docs.sh checks that each is compiled here).
+for md in "$src/../README.md" "$src"/../docs/*.md; do
+    [ -f "$md" ] || continue
+    awk '/^```c$/ { on = 1; k++; next } on && /^```$/ { on = 0 } on && !/^#include/ { print > ("'"$tmp"'/block." k) }' "$md"
+    for b in "$tmp"/block.*; do
+        [ -f "$b" ] || continue
+        { echo '#include <jade/jade.h>'
+          echo 'static unsigned char memory[1 << 20];'
+          echo 'int doc_snippet(const void *bytes, size_t size, unsigned fbo, int w, int h);'
+          echo 'int doc_snippet(const void *bytes, size_t size, unsigned fbo, int w, int h) {'
+          echo '    jd_arena arena; jd_error err; jd_mesh mesh; jd_gl_caps caps; jd_renderer *r; jd_scene scene;'
+          cat "$b"
+          echo '    jd_renderer_destroy(r);'
+          echo '    return err.code;'
+          echo '}'; } > "$tmp/snippet.c"
+        name="$(basename "$md"), C block $(basename "$b" | cut -d. -f2)"
+        if cc -std=c11 -Wall -Wextra -Werror -c -o "$tmp/snippet.o" "$tmp/snippet.c" $(pkg-config --cflags jade) >"$tmp/log" 2>&1; then
+            pass=$((pass + 1)); echo "ok   $name compiles against the installed headers ($(grep -c . "$b") lines)"
+        else
+            fail=$((fail + 1)); echo "FAIL $name"; cat "$tmp/log"
+        fi
+        rm -f "$b"
+    done
+done
 echo "consumer: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
