@@ -19,6 +19,12 @@ void jd_mesh_arrays_free(jd_mesh_arrays *m)
     memset(m, 0, sizeof *m);
 }
 
+void jd_mesh_arrays_drop_uvs(jd_mesh_arrays *m)
+{
+    free(m->uv);
+    m->uv = NULL;
+}
+
 #ifdef JD_HAVE_MESHOPT
 static void turn_round(uint32_t *idx, size_t n)
 {

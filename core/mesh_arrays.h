@@ -23,6 +23,8 @@ typedef struct jd_mesh_arrays {
 typedef int (*jd_record_write_fn)(void *user, const void *data, size_t n);
 
 void jd_mesh_arrays_free(jd_mesh_arrays *m);
+/* Texture coordinates gone: the record will not carry them. */
+void jd_mesh_arrays_drop_uvs(jd_mesh_arrays *m);
 
 /* Triangles in the order a GPU draws best (meshoptimizer's vertex cache,
  * then overdraw order) where built with meshoptimizer; otherwise, or for

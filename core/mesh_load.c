@@ -6,7 +6,6 @@
 #include <poll.h>
 #include <signal.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -87,10 +86,7 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
         rc = jd_draco_read(buf, n, (int)d->format, d->max_vertices, d->max_faces, &m, msg, sizeof msg);
     }
     if (rc == 0) {
-        if (!d->keep_uvs) { /* neither sent nor checked nor given arena memory */
-            free(m.uv);
-            m.uv = NULL;
-        }
+        if (!d->keep_uvs) jd_mesh_arrays_drop_uvs(&m); /* neither sent nor checked nor given arena memory */
         if (!d->keep_face_order) jd_mesh_arrays_order(&m);
         if (jd_mesh_arrays_emit(&m, write_all, &data_fd) != 0) {
             snprintf(msg, sizeof msg, "could not hand the decoded mesh back (pipe closed)");
