@@ -57,7 +57,7 @@ static int compile_all(jd_options *o)
     o->width = o->height = 64;
     /* Nothing drawn: the drm-shim drivers never signal a fence, and a
      * failed program is reported here, not fallen back from. */
-    o->rdesc.no_program_probe = 1;
+    o->rdesc.program_probe = JD_PROBE_OFF;
     jd_session s;
     /* The session passes the driver's messages on (the compiler's among
      * them) as they come, between this program's two lines. */

@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef enum { T_STR, T_PATH, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION, T_ANTIALIAS } opt_type;
+typedef enum { T_STR, T_PATH, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION, T_ANTIALIAS, T_PROBE } opt_type;
 
 typedef struct opt {
     const char *name;
@@ -91,6 +91,8 @@ static const opt table[] = {
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
     {"--antialias", T_ANTIALIAS, OFF(rdesc.antialias), 0, 0, R | B,
      "A          auto|off|post: edges by the target's multisampling, else a pass after the frame [auto]"},
+    {"--program-probe", T_PROBE, OFF(rdesc.program_probe), 0, 0, R | B,
+     "P          auto|on|off: draw every shader program once at start-up to find ones the driver drops [auto: GPUs, not llvmpipe]"},
     {"--fragment-thickness", T_FLAG, OFF(rdesc.fragment_thickness), 0, 0, R | B, "           thickness per fragment, not per vertex (coarse meshes)"},
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
     {"--light-speed", T_FLOAT, OFF(light_speed), -3600, 3600, K,
@@ -343,23 +345,22 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
             break;
         }
         case T_PRECISION:
-            if (!strcmp(v, "auto")) o->rdesc.precision = JD_PRECISION_AUTO;
-            else if (!strcmp(v, "highp")) o->rdesc.precision = JD_PRECISION_HIGHP;
-            else if (!strcmp(v, "mediump")) o->rdesc.precision = JD_PRECISION_MEDIUMP;
-            else {
-                fprintf(stderr, "jade %s: %s: expected auto, highp or mediump, got '%s'\n", cmd, a, v);
-                return 0;
-            }
-            break;
         case T_ANTIALIAS:
-            if (!strcmp(v, "auto")) o->rdesc.antialias = JD_AA_AUTO;
-            else if (!strcmp(v, "off")) o->rdesc.antialias = JD_AA_OFF;
-            else if (!strcmp(v, "post")) o->rdesc.antialias = JD_AA_POST;
-            else {
-                fprintf(stderr, "jade %s: %s: expected auto, off or post, got '%s'\n", cmd, a, v);
+        case T_PROBE: {
+            /* The words in the enums' order (jd_precision, jd_antialias, jd_probe). */
+            static const char *const words[][3] = {{"auto", "highp", "mediump"}, {"auto", "off", "post"}, {"auto", "on", "off"}};
+            const char *const *w = words[op->type - T_PRECISION];
+            int k = 0;
+            while (k < 3 && strcmp(v, w[k])) k++;
+            if (k == 3) {
+                fprintf(stderr, "jade %s: %s: expected %s, %s or %s, got '%s'\n", cmd, a, w[0], w[1], w[2], v);
                 return 0;
             }
+            if (op->type == T_PRECISION) o->rdesc.precision = (jd_precision)k;
+            else if (op->type == T_ANTIALIAS) o->rdesc.antialias = (jd_antialias)k;
+            else o->rdesc.program_probe = (jd_probe)k;
             break;
+        }
         case T_FLAG:
             break;
         }

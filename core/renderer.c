@@ -665,7 +665,9 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
         }
     }
     if (!ok[GROUP_BASE]) return jd_fail(err, JD_ERR_UNSUPPORTED, "%s", gerr[GROUP_BASE].msg);
-    if (!r->d.no_program_probe) {
+    const char *gl = r->d.caps->renderer;
+    int software = strstr(gl, "llvmpipe") || strstr(gl, "softpipe") || strstr(gl, "swrast");
+    if (r->d.program_probe == JD_PROBE_ON || (r->d.program_probe == JD_PROBE_AUTO && !software)) {
         GLuint ids[JD_PROBE_MAX], *slot[JD_PROBE_MAX];
         int owner[JD_PROBE_MAX], drawn[JD_PROBE_MAX], n = 0;
         for (int g = 0; g < GROUP_COUNT; g++) {
@@ -678,7 +680,13 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
                 owner[n] = g;
             }
         }
-        if (jd_program_probe(ids, n, r->quad_vbo, drawn))
+        target probe = {0};
+        size_t bytes = r->target_bytes;
+        int probed = make_target(r, &probe, JD_PROBE_MAX, 1, 0, 0, "program probe", NULL) == JD_OK &&
+                     jd_program_probe(ids, n, probe.fbo, r->quad_vbo, drawn);
+        free_target(&probe);
+        r->target_bytes = bytes; /* gone again */
+        if (probed)
             for (int i = 0; i < n; i++)
                 if (!drawn[i] && ok[owner[i]]) {
                     ok[owner[i]] = 0;

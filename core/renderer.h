@@ -22,6 +22,11 @@ typedef enum jd_precision { JD_PRECISION_AUTO = 0, JD_PRECISION_HIGHP, JD_PRECIS
  * config with samples, free on tile-based GPUs) and otherwise smooths them
  * in a pass after the frame (one full-size render target more). */
 typedef enum jd_antialias { JD_AA_AUTO = 0, JD_AA_OFF, JD_AA_POST } jd_antialias;
+/* The start-up check that every program draws (core/program_probe.c): two
+ * small read-backs, and every program's shaders compiled at once rather
+ * than when a mode first needs them. AUTO runs it on GPUs and skips it on
+ * software rasterizers (llvmpipe, softpipe), which draw whatever links. */
+typedef enum jd_probe { JD_PROBE_AUTO = 0, JD_PROBE_ON, JD_PROBE_OFF } jd_probe;
 
 const char *jd_mode_name(jd_mode m);
 int jd_mode_parse(const char *s, jd_mode *out);
@@ -49,9 +54,7 @@ typedef struct jd_renderer_desc {
     /* Looks up GL extension entry points (the platform's); with it and
      * GL_EXT_disjoint_timer_query, timed frames also get GPU pass times. */
     void *(*get_proc)(const char *name);
-    /* Skip the start-up check that every program draws (two small
-     * read-backs): for compile-only runs on drivers that cannot read back. */
-    int no_program_probe;
+    jd_probe program_probe; /* [AUTO] (OFF: compile-only runs on drivers that cannot read back) */
 } jd_renderer_desc;
 
 /* What a frame shows. jd_scene_defaults fills a sensible one. */
