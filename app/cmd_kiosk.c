@@ -225,6 +225,7 @@ int jd_cmd_kiosk(int argc, char **argv)
                ps.missed_vblanks);
         if (ps.refresh_hz > 0)
             printf(" (display %.0f Hz), page flips %u, modesets %u", ps.refresh_hz, ps.flips, ps.modesets);
+        if (ps.in_fences || ps.out_fences) printf(", fences in %u out %u", ps.in_fences, ps.out_fences);
         printf("\n");
     }
     jd_session_close(&s);

@@ -4,6 +4,7 @@
 #include "backend.h"
 #include "drm_select.h"
 #include "egl_setup.h"
+#include "gl_caps.h" /* jd_extension_listed */
 #include "input.h"
 
 #include <errno.h>
@@ -55,6 +56,16 @@ typedef struct drm_platform {
     uint32_t plane_id, mode_blob;
     uint32_t p_conn_crtc, p_crtc_mode, p_crtc_active, p_fb, p_plane_crtc, p_src_x, p_src_y, p_src_w, p_src_h,
         p_crtc_x, p_crtc_y, p_crtc_w, p_crtc_h;
+    /* Explicit fences (atomic): the GPU's "rendering done" handed to the
+     * plane (IN_FENCE_FD, from EGL_ANDROID_native_fence_sync), so scan-out
+     * waits for it even where the display and the GPU are separate devices
+     * that share no implicit sync (kmsro boards); the kernel's "flip done"
+     * back from the CRTC (OUT_FENCE_PTR), waited on before the next frame. */
+    uint32_t p_in_fence, p_out_fence;
+    PFNEGLCREATESYNCKHRPROC create_sync;
+    PFNEGLDESTROYSYNCKHRPROC destroy_sync;
+    PFNEGLDUPNATIVEFENCEFDANDROIDPROC dup_fence;
+    unsigned in_fences, out_fences;
     unsigned frames, missed, last_seq, flips, modesets;
     /* Hotplug: the kernel's uevents, the card's name in them, whether the
      * display is gone, what was asked for and the most the budget allows. */
@@ -294,14 +305,18 @@ static jd_result setup_atomic(drm_platform *p, jd_error *err)
     p->p_crtc_h = prop_id(p->fd, p->plane_id, P, "CRTC_H");
     if (!p->p_conn_crtc || !p->p_crtc_mode || !p->p_crtc_active || !p->p_fb || !p->p_plane_crtc)
         return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: the atomic properties jade needs are missing", p->device);
+    p->p_in_fence = prop_id(p->fd, p->plane_id, P, "IN_FENCE_FD");   /* both since Linux 4.10; 0 where absent */
+    p->p_out_fence = prop_id(p->fd, p->crtc_id, R, "OUT_FENCE_PTR");
     if (drmModeCreatePropertyBlob(p->fd, &p->mode, sizeof p->mode, &p->mode_blob) != 0)
         return jd_fail(err, JD_ERR_PLATFORM, "%s: cannot create the mode blob: %s", p->device, strerror(errno));
     return JD_OK;
 }
 
 /* The first commit sets the mode (ALLOW_MODESET); later ones only move
- * the plane to the new framebuffer and ask for the flip event. */
-static int atomic_commit(drm_platform *p, uint32_t fb, int modeset)
+ * the plane to the new framebuffer and ask for the flip event. in_fence:
+ * the GPU's fence for fb, or -1; out_fence: where the kernel puts the
+ * flip's fence, or NULL. */
+static int atomic_commit(drm_platform *p, uint32_t fb, int modeset, int in_fence, int *out_fence)
 {
     drmModeAtomicReq *req = drmModeAtomicAlloc();
     if (!req) return -1;
@@ -320,6 +335,8 @@ static int atomic_commit(drm_platform *p, uint32_t fb, int modeset)
         drmModeAtomicAddProperty(req, p->plane_id, p->p_crtc_h, p->mode.vdisplay);
     }
     drmModeAtomicAddProperty(req, p->plane_id, p->p_fb, fb);
+    if (in_fence >= 0) drmModeAtomicAddProperty(req, p->plane_id, p->p_in_fence, (uint64_t)in_fence);
+    if (out_fence) drmModeAtomicAddProperty(req, p->crtc_id, p->p_out_fence, (uint64_t)(uintptr_t)out_fence);
     uint32_t flags = modeset ? DRM_MODE_ATOMIC_ALLOW_MODESET : DRM_MODE_ATOMIC_NONBLOCK | DRM_MODE_PAGE_FLIP_EVENT;
     int rc = drmModeAtomicCommit(p->fd, req, flags, p);
     drmModeAtomicFree(req);
@@ -538,6 +555,14 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
     if (p->ctx == EGL_NO_CONTEXT || p->surf == EGL_NO_SURFACE || !eglMakeCurrent(p->edpy, p->surf, p->surf, p->ctx))
         return fail_open(p, jd_fail(err, JD_ERR_PLATFORM, "%s: cannot make a GLES 2.0 context current on GBM (0x%x)",
                                     p->device, eglGetError()));
+    const char *egl_ext = eglQueryString(p->edpy, EGL_EXTENSIONS);
+    if (p->atomic && p->p_in_fence && jd_extension_listed(egl_ext, "EGL_ANDROID_native_fence_sync") &&
+        jd_extension_listed(egl_ext, "EGL_KHR_fence_sync")) {
+        p->create_sync = (PFNEGLCREATESYNCKHRPROC)eglGetProcAddress("eglCreateSyncKHR");
+        p->destroy_sync = (PFNEGLDESTROYSYNCKHRPROC)eglGetProcAddress("eglDestroySyncKHR");
+        p->dup_fence = (PFNEGLDUPNATIVEFENCEFDANDROIDPROC)eglGetProcAddress("eglDupNativeFenceFDANDROID");
+        if (!p->create_sync || !p->destroy_sync) p->dup_fence = NULL;
+    }
     snprintf(p->describe, sizeof p->describe, "DRM/KMS %.63s %.31s %dx%d@%d, GBM %s, EGL %d.%d (%.60s)", p->device,
              p->connector_name, p->mode.hdisplay, p->mode.vdisplay, p->mode.vrefresh,
              p->format == GBM_FORMAT_XRGB8888 ? "XRGB8888" : "ARGB8888", major, minor,
@@ -548,6 +573,12 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
              : p->num_modifiers > 0 ? "without modifiers (GBM took none of the plane's)"
                                     : "without modifiers (the plane lists none)",
              p->render_node[0] ? ", GPU " : "", p->render_node);
+    at = strlen(p->describe);
+    if (p->atomic)
+        snprintf(p->describe + at, sizeof p->describe - at, "; fences: %s, %s",
+                 p->dup_fence ? "the GPU's to the plane" : p->p_in_fence ? "none to the plane (EGL has no native fences)"
+                                                                           : "none to the plane (no IN_FENCE_FD)",
+                 p->p_out_fence ? "the flip's waited on" : "flip events only (no OUT_FENCE_PTR)");
     at = strlen(p->describe);
     snprintf(p->describe + at, sizeof p->describe - at, "; hotplug %s",
              p->uevent_fd >= 0 ? "followed (kernel uevents)" : "not followed (no uevent socket)");
@@ -624,25 +655,55 @@ static jd_result wait_flip(drm_platform *p, jd_error *err)
     return JD_OK;
 }
 
+/* Waits for a fence fd (a second at most) and closes it. */
+static int wait_fence(int fd)
+{
+    struct pollfd pfd = {fd, POLLIN, 0};
+    int k;
+    do k = poll(&pfd, 1, 1000);
+    while (k < 0 && errno == EINTR);
+    close(fd);
+    return k > 0;
+}
+
 static jd_result drm_present(void *impl, jd_error *err)
 {
     drm_platform *p = impl;
     if (p->failed[0]) return jd_fail(err, JD_ERR_PLATFORM, "%s", p->failed);
-    if (!eglSwapBuffers(p->edpy, p->surf)) return jd_fail(err, JD_ERR_PLATFORM, "eglSwapBuffers failed (0x%x)", eglGetError());
+    /* The GPU's fence goes into the command stream before the swap flushes
+     * it; its fd exists once flushed. */
+    EGLSyncKHR sync = EGL_NO_SYNC_KHR;
+    if (p->dup_fence && p->modeset_done && !p->lost) {
+        static const EGLint attribs[] = {EGL_SYNC_NATIVE_FENCE_FD_ANDROID, EGL_NO_NATIVE_FENCE_FD_ANDROID, EGL_NONE};
+        sync = p->create_sync(p->edpy, EGL_SYNC_NATIVE_FENCE_ANDROID, attribs);
+    }
+    if (!eglSwapBuffers(p->edpy, p->surf)) {
+        if (sync != EGL_NO_SYNC_KHR) p->destroy_sync(p->edpy, sync);
+        return jd_fail(err, JD_ERR_PLATFORM, "eglSwapBuffers failed (0x%x)", eglGetError());
+    }
+    int in_fence = -1;
+    if (sync != EGL_NO_SYNC_KHR) {
+        in_fence = p->dup_fence(p->edpy, sync);
+        p->destroy_sync(p->edpy, sync);
+    }
     struct gbm_bo *bo = gbm_surface_lock_front_buffer(p->gbm_surface);
     if (p->lost) {
         /* Nothing to show it on: the frame is dropped, and the loop waits
          * for the kernel's next word (or a signal), a second at most. */
         if (bo) gbm_surface_release_buffer(p->gbm_surface, bo);
+        if (in_fence >= 0) close(in_fence);
         struct pollfd pfd = {p->uevent_fd, POLLIN, 0};
         poll(&pfd, 1, 1000);
         return JD_OK;
     }
     uint32_t fb = bo ? fb_for(p, bo) : 0;
-    if (!fb) return jd_fail(err, JD_ERR_PLATFORM, "%s: cannot make a scan-out framebuffer", p->device);
+    if (!fb) {
+        if (in_fence >= 0) close(in_fence);
+        return jd_fail(err, JD_ERR_PLATFORM, "%s: cannot make a scan-out framebuffer", p->device);
+    }
     if (!p->modeset_done) {
         /* The one modeset; every later frame is a page flip. */
-        int rc = p->atomic ? atomic_commit(p, fb, 1)
+        int rc = p->atomic ? atomic_commit(p, fb, 1, -1, NULL)
                            : drmModeSetCrtc(p->fd, p->crtc_id, fb, 0, 0, &p->connector_id, 1, &p->mode);
         if (rc != 0)
             return jd_fail(err, JD_ERR_PLATFORM, "%s: modeset on %s failed: %s%s", p->device, p->connector_name,
@@ -652,11 +713,19 @@ static jd_result drm_present(void *impl, jd_error *err)
             fprintf(stderr, "jade: %s: %s: %dx%d@%d set again, frames shown\n", p->device, p->connector_name,
                     p->mode.hdisplay, p->mode.vdisplay, p->mode.vrefresh);
     } else {
-        int rc = p->atomic ? atomic_commit(p, fb, 0)
+        int out_fence = -1;
+        int rc = p->atomic ? atomic_commit(p, fb, 0, in_fence, p->p_out_fence ? &out_fence : NULL)
                            : drmModePageFlip(p->fd, p->crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, p);
+        if (in_fence >= 0) {
+            close(in_fence); /* the kernel holds its own reference */
+            p->in_fences += rc == 0;
+        }
         if (rc != 0)
             return jd_fail(err, JD_ERR_PLATFORM, "%s: page flip failed: %s", p->device, strerror(errno));
         p->flip_pending = 1;
+        /* The flip's own fence: signalled when the new frame is on the
+         * screen and the old buffer free to draw into. */
+        if (out_fence >= 0) p->out_fences += wait_fence(out_fence);
         jd_result r = wait_flip(p, err);
         if (r) return r;
     }
@@ -704,6 +773,8 @@ static void drm_stats(const void *impl, jd_present_stats *st)
     st->missed_vblanks = p->missed;
     st->flips = p->flips;
     st->modesets = p->modesets;
+    st->in_fences = p->in_fences;
+    st->out_fences = p->out_fences;
     st->refresh_hz = p->mode.vrefresh;
 }
 

@@ -46,6 +46,7 @@ typedef struct jd_present_stats {
     unsigned frames, missed_vblanks; /* missed: flips that took more than one refresh */
     unsigned flips;                  /* page flips the display confirmed (drm: frames - modesets) */
     unsigned modesets;               /* drm: 1, and one more each time a display came back or changed mode */
+    unsigned in_fences, out_fences;  /* drm --atomic: commits that carried the GPU's fence; flip fences waited on */
     double refresh_hz;
 } jd_present_stats;
 

@@ -47,6 +47,12 @@ if kiosk legacy --frames 6; then flips legacy 6; else bad "legacy: $(cat "$out/l
 restored legacy
 if kiosk atomic --frames 6 --atomic --mode none; then flips atomic 6; else bad "atomic: $(cat "$out/atomic")"; fi
 restored atomic
+# Explicit fences: every flip's OUT_FENCE_PTR fence waited on (vkms has the
+# property); the GPU's fence goes to the plane only where EGL has native
+# fences, which the guest's software GL has not: it must say so.
+if grep -q "fences in 0 out 5" "$out/atomic" && grep -q "fences: none to the plane (EGL has no native fences), the flip's waited on" "$out/atomic"; then
+    ok "atomic: explicit fences: $(grep -o 'fences: [^;]*' "$out/atomic"); $(grep -o 'fences in [0-9]* out [0-9]*' "$out/atomic")"
+else bad "atomic: fences: $(grep -o 'fences[^;]*' "$out/atomic" | tr '\n' ' ')"; fi
 # What was chosen is what was asked.
 if kiosk choose --frames 2 --mode none --connector Virtual-1 --display-mode 800x600 && grep -q "Virtual-1 800x600" "$out/choose"; then
     ok "--connector Virtual-1 --display-mode 800x600: $(grep -o 'DRM/KMS [^,]*' "$out/choose")"
