@@ -63,7 +63,21 @@ printf '# test\nplatform = headless\nsize = 96x72\nmaterial = skin1\nlog-every =
 "$jade" kiosk --config "$conf" > "$out/kiosk_hup.out" 2> "$out/kiosk_hup.err" &
 pid=$!
 i=0
-while [ $i -lt 600 ] && ! grep -q "anti-aliasing" "$out/kiosk_hup.err"; do sleep 0.1; i=$((i + 1)); done
+while [ $i -lt 600 ] && ! grep -q "anti-aliasing" "$out/kiosk_hup.err" && kill -0 "$pid" 2>/dev/null; do sleep 0.1; i=$((i + 1)); done
+# A kiosk that did not start is said, with where it is, not sent SIGHUPs
+# (which would end a process that has no handler yet).
+if ! grep -q "anti-aliasing" "$out/kiosk_hup.err"; then
+    if kill -0 "$pid" 2>/dev/null; then
+        echo "FAIL SIGHUP: the kiosk did not start in $((i / 10)) s: state $(sed -n 's/^State:\t//p' /proc/$pid/status), in $(cat /proc/$pid/wchan 2>/dev/null)"
+        cat /proc/$pid/stack 2>/dev/null | head -8
+        command -v gdb >/dev/null && timeout 30 gdb -p "$pid" -batch -ex "thread apply all bt 12" 2>&1 | grep '^#\|^Thread' | head -40
+        kill -KILL "$pid"
+    else
+        wait "$pid"
+        echo "FAIL SIGHUP: the kiosk ended before it started, status $?: $(cat "$out/kiosk_hup.err" "$out/kiosk_hup.out" | head -5)"
+    fi
+    exit 1
+fi
 hup() { printf "$1" > "$conf"; kill -HUP "$pid"; i=0; n=$2
         while [ $i -lt 300 ] && [ "$(grep -c SIGHUP "$out/kiosk_hup.err")" -lt "$n" ]; do sleep 0.1; i=$((i + 1)); done; }
 base='platform = headless\nsize = 96x72\nlog-every = 0.3\n'
