@@ -71,6 +71,9 @@ output() { # FILE:LINE BLOCK: a line jade prints, "..." standing for the rest
     want=$(head -1 "$block")
     case $want in
     "jade kiosk: on this GPU: full's diffusion unavailable:"*)
+        # A sanitized build cannot take the preloaded library first: the
+        # release build's run checks this block.
+        if ldd "$jade" | grep -q libasan; then ok "$where: checked in the release build (preloading)"; return; fi
         JD_SABOTAGE=u_near:reject LD_PRELOAD=$sabotage "$jade" kiosk --platform headless --size 64x64 --frames 1 \
             > "$tmp/out" 2> "$tmp/err"
         got=$(grep "on this GPU" "$tmp/err")
