@@ -92,7 +92,7 @@ rm -rf "$out"
 mkdir -p "$out"
 echo "kms-test: kernel $kver, vkms built here, $(basename "$jade") from $(dirname "$jade")"
 start=$(date +%s)
-timeout 1200 qemu-system-x86_64 -machine q35 -cpu qemu64 -smp 2 -m 2048 -nographic -no-reboot \
+timeout 1500 qemu-system-x86_64 -machine q35 -cpu qemu64 -smp 2 -m 2048 -nographic -no-reboot \
     -kernel "/boot/vmlinuz-$kver" -initrd "$work/initrd.gz" -append "console=ttyS0 panic=-1 quiet" \
     -virtfs local,path=/,mount_tag=host,security_model=none,readonly=on,multidevs=remap \
     -virtfs local,path="$out",mount_tag=out,security_model=none > "$work/console.log" 2>&1 || true
