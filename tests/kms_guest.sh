@@ -22,11 +22,29 @@ crtc_state > "$out/crtc_before"
 # Under TCG a frame takes seconds and a decode may pass the usual 1.5 s.
 mode="--display-mode 640x480 --decode-timeout-ms 60000"
 # kiosk NAME ARGS...: runs the kiosk to its end; its output in $out/NAME.
+# A kiosk that has not exited 60 s after printing its statistics (or 600 s
+# after it started) is recorded (each thread's wait channel, the kernel
+# stack) and killed: a hang at exit shows in the results instead of holding
+# the guest until its time runs out (seen once in CI: a run that printed
+# its statistics and then never exited).
 kiosk() {
     name=$1
     shift
     start=$(date +%s)
-    timeout 600 "$jade" kiosk --drm-device /dev/dri/card0 $mode "$@" > "$out/$name" 2>&1
+    "$jade" kiosk --drm-device /dev/dri/card0 $mode "$@" > "$out/$name" 2>&1 &
+    kpid=$!
+    done_at=0
+    while [ -d /proc/$kpid ] && [ "$(cut -d' ' -f3 /proc/$kpid/stat 2>/dev/null)" != Z ]; do
+        now=$(date +%s)
+        [ $done_at -eq 0 ] && grep -q "^kiosk: [0-9]* frames" "$out/$name" && done_at=$now
+        if [ $((now - start)) -gt 600 ] || { [ $done_at -gt 0 ] && [ $((now - done_at)) -gt 60 ]; }; then
+            bad "$name: no exit $([ $done_at -gt 0 ] && echo '60 s after its statistics' || echo 'in 600 s'): threads $(for t in /proc/$kpid/task/*; do printf '%s:%s ' "$(cat "$t/comm" 2>/dev/null)" "$(cat "$t/wchan" 2>/dev/null)"; done)stack $(tr '\n' ' ' < /proc/$kpid/stack 2>/dev/null | cut -c1-200)"
+            kill -KILL $kpid
+            break
+        fi
+        sleep 0.5
+    done
+    wait $kpid
     rc=$?
     echo "  ($name: exit $rc after $(( $(date +%s) - start )) s)" >> "$res"
     return $rc
