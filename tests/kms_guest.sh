@@ -67,17 +67,20 @@ cube=$out/cube.obj
     for f in "1 3 2" "1 4 3" "5 6 7" "5 7 8" "1 2 6" "1 6 5" "4 8 7" "4 7 3" "1 5 8" "1 8 4" "2 3 7" "2 7 6"; do echo "f $f"; done
 } > "$cube"
 light="--display-mode 640x480 --decode-timeout-ms 60000 --mode none --antialias off --mesh $cube"
-# kiosk NAME LIMIT ARGS...: runs the kiosk to its end (watch), its output in $out/NAME.
-kiosk() {
+# bounded NAME LIMIT COMMAND...: runs COMMAND to its end (watch), its output
+# in $out/NAME, and returns its exit status.
+bounded() {
     name=$1 limit=$2
     shift 2
     start=$(now)
-    "$jade" kiosk --drm-device /dev/dri/card0 "$@" > "$out/$name" 2>&1 &
+    "$@" > "$out/$name" 2>&1 &
     watch $! "$name" "$limit"
     rc=$?
     echo "  ($name: exit $rc after $(( $(now) - start )) s)" >> "$res"
     return $rc
 }
+# kiosk NAME LIMIT ARGS...: the kiosk on vkms, bounded.
+kiosk() { k_name=$1 k_limit=$2; shift 2; bounded "$k_name" "$k_limit" "$jade" kiosk --drm-device /dev/dri/card0 "$@"; }
 restored() {
     crtc_state > "$out/crtc_after"
     if cmp -s "$out/crtc_before" "$out/crtc_after"; then ok "$1: the CRTC is as it was before ($(grep -m1 'enable=' "$out/crtc_after" | tr -d '\t'))"
@@ -152,12 +155,8 @@ fi
 if have 700 capture; then
     still="--light-speed 0 --antialias off"
     if kiosk capture 350 --display-mode 640x480 --decode-timeout-ms 60000 --frames 3 --atomic $still --screenshot "$out/scanout.png"; then
-        start=$(now)
-        "$jade" render --size 640x480 --decode-timeout-ms 60000 --antialias off --out "$out/render.png" > "$out/render" 2>&1 &
-        watch $! render 300
-        rc=$?
-        echo "  (render: exit $rc after $(( $(now) - start )) s)" >> "$res"
-        if [ $rc -ne 0 ]; then bad "the guest's render: $(cat "$out/render")"
+        if ! bounded render 300 "$jade" render --size 640x480 --decode-timeout-ms 60000 --antialias off --out "$out/render.png"; then
+            bad "the guest's render: $(cat "$out/render")"
         # Not two blank pictures: the object is in the capture, whole.
         elif "$imgcmp" "$out/scanout.png" "$out/render.png" --max-rmse 0.5 --max-bad-frac 0.001 > "$out/cmp" 2>&1 &&
             "$imgcmp" --frame "$out/scanout.png" 0.3 >> "$out/cmp" 2>&1; then
