@@ -5,10 +5,45 @@
 #include <sys/resource.h>
 
 #include "alloc_count.h"
+#include "board.h"
 #include "commands.h"
 #include "frame_stats.h"
 #include "health.h"
 #include "json_out.h"
+
+/* The frame-cost model's estimate of one frame of `sc` on the board, as
+ * a JSON member: counted here (read-backs, outside the timed frames), the
+ * instructions from the built-in compiler table. */
+static int print_estimate(jd_session *s, const jd_board *b, const jd_scene *sc, jd_error *err)
+{
+    static jd_frame_count count; /* one at a time; large for a stack */
+    static jd_estimate est;
+    if (jd_renderer_count(s->renderer, sc, b->vertex_cache, &count, err) ||
+        jd_frame_cost_estimate(b, &count, NULL, &est, err))
+        return 0;
+    double written = 0, read = 0;
+    for (int i = 0; i < count.num_passes; i++) {
+        written += count.pass[i].bytes_written;
+        read += count.pass[i].bytes_read;
+    }
+    printf(", \"estimate\": {\"board\": \"%s\", \"frame_ms\": %.3f, \"fps\": %.1f, \"vertex_ms\": %.3f, "
+           "\"fragment_ms\": %.3f, \"target_switches\": %d, \"bytes_written\": %.0f, \"bytes_read\": %.0f, \"passes\": [",
+           b->name, est.frame_ms, 1000.0 / est.frame_ms, est.vertex_ms, est.fragment_ms, count.target_switches, written,
+           read);
+    for (int i = 0; i < count.num_passes; i++) {
+        const jd_pass_count *p = &count.pass[i];
+        const jd_pass_estimate *e = &est.pass[i];
+        printf("%s{\"pass\": \"%s\", \"program\": \"%s\", \"size\": \"%dx%d\", \"fragments\": %.0f, "
+               "\"vertices\": %.0f, \"triangles\": %.0f, \"fs_instructions\": %.0f, \"vs_instructions\": %.0f, "
+               "\"loop_trips\": %.0f, \"fs_cost\": %.1f, \"vs_cost\": %.1f, \"bytes_written\": %.0f, \"bytes_read\": %.0f, "
+               "\"ms\": %.4f}",
+               i ? ", " : "", p->pass, p->program, p->width, p->height, p->fragments, p->vertices, p->triangles,
+               e->fs_instructions, e->vs_instructions, p->trips, e->fs_cost, e->vs_cost, p->bytes_written,
+               p->bytes_read, e->ms);
+    }
+    printf("]}");
+    return 1;
+}
 
 /* Runs `frames` frames of one mode with the light orbiting once per 120
  * frames, so thickness, capture and SH are recomputed every frame. */
@@ -107,6 +142,7 @@ static int bench_mode(jd_session *s, jd_options *o, jd_mode mode, double *times,
             printf("%s\"%s\": %.3f", p ? ", " : "", jd_pass_name(p), gpu[p] / gpu_frames);
         printf("}");
     }
+    if (o->device && !print_estimate(s, jd_board_find(o->device), &sc, &err)) goto fail;
     printf("}");
     return 1;
 fail:
@@ -126,6 +162,10 @@ int jd_cmd_bench(int argc, char **argv)
                                 argc, argv);
     if (rc >= 0) return rc;
     if (!o.frames) o.frames = 200;
+    /* The boards take their edges from a multisampled EGL config (4x,
+     * shaded once per pixel on their tile buffers): no pass after the
+     * frame, as there. */
+    if (o.device && o.rdesc.antialias == JD_AA_AUTO) o.rdesc.antialias = JD_AA_OFF;
 
     jd_session s;
     if (!jd_session_open(&s, &o, "bench")) { jd_session_close(&s); return 1; }
@@ -153,6 +193,12 @@ int jd_cmd_bench(int argc, char **argv)
     printf(", \"platform\": ");
     jd_json_string(stdout, jd_platform_describe(s.platform));
     printf(", \"gpu_timer_query\": %s,\n", info.gpu_timer ? "true" : "false");
+    if (o.device) {
+        const jd_board *b = jd_board_find(o.device);
+        printf("  \"device\": \"%s\", \"device_summary\": ", b->name);
+        jd_json_string(stdout, b->summary);
+        printf(", \"profile\": \"%s\", \"compiler\": \"%s\",\n", b->profile, b->compiler);
+    }
     printf("  \"time_to_first_frame_ms\": %.1f, \"draco_decode_ms\": %.2f, \"file_bytes\": %zu,\n", ttff,
            s.load.decode_ms, s.load.file_bytes);
     printf("  \"arena_budget_bytes\": %zu, \"arena_peak_bytes\": %zu, \"render_target_bytes\": %zu,\n", s.arena.size,

@@ -1,6 +1,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "board.h"
 #include "commands.h"
 #include "options.h"
 #include "gl.h"
@@ -16,30 +17,11 @@ typedef struct compile_log {
     char label[160];
 } compile_log;
 
-static void tag(char *out, size_t cap, const char *defines, const char *name, const char *shown)
-{
-    const char *p = defines ? strstr(defines, name) : NULL;
-    if (p && p[strlen(name)] == ' ' && p[strlen(name) + 1] != '0') {
-        size_t n = strlen(out);
-        snprintf(out + n, cap - n, "%s%s", out[n - 1] == '[' ? "" : ",", shown);
-    }
-}
-
 static void on_program(void *user, const char *vs, const char *fs, const char *defines, int result, const char *msg)
 {
     compile_log *l = user;
     if (result < 0) {
-        const char *v = strrchr(vs, '/'), *f = strrchr(fs, '/');
-        snprintf(l->label, sizeof l->label, "%s+%s[", v ? v + 1 : vs, f ? f + 1 : fs);
-        static const char *const tags[][2] = {
-            {"JD_TRANSLUCENT", "translucent"}, {"JD_SPREAD", "spread"}, {"JD_FULL", "full"},
-            {"JD_A0_ONLY", "a0"}, {"JD_WIDE_ONLY", "wide"}, {"JD_VERTEX_DIFFUSION", "vertex-diffusion"},
-            {"JD_VERTEX_THICKNESS", "vertex-thickness"}, {"JD_FIRST", "first"}, {"JD_COMBINE", "combine"},
-            {"JD_PACK_HIGHP", "highp"}};
-        for (size_t i = 0; i < sizeof tags / sizeof tags[0]; i++) tag(l->label, sizeof l->label, defines, tags[i][0], tags[i][1]);
-        size_t n = strlen(l->label);
-        if (l->label[n - 1] == '[') l->label[n - 1] = 0;
-        else snprintf(l->label + n, sizeof l->label - n, "]");
+        jd_program_label(vs, fs, defines, l->label, sizeof l->label);
         fprintf(stderr, "jade: compiling program %d: %s\n", l->count, l->label);
         return;
     }
@@ -53,6 +35,11 @@ static int compile_all(jd_options *o)
 {
     compile_log l = {0};
     jd_program_observe(on_program, &l);
+    if (o->unroll_loops > 0) {
+        char def[40];
+        snprintf(def, sizeof def, "#define JD_UNROLL %d\n", o->unroll_loops);
+        jd_program_extra_defines(def);
+    }
     o->platform = "headless";
     o->width = o->height = 64;
     /* Nothing drawn: the drm-shim drivers never signal a fence, and a
@@ -63,6 +50,7 @@ static int compile_all(jd_options *o)
      * them) as they come, between this program's two lines. */
     int ok = jd_session_open(&s, o, "info");
     jd_program_observe(NULL, NULL);
+    jd_program_extra_defines(NULL);
     if (ok) printf("jade info --compile: %d programs built for %s (%s), none failed\n", l.count, s.caps.renderer,
                    o->profile ? o->profile : "no profile");
     jd_session_close(&s);
@@ -83,6 +71,22 @@ int jd_cmd_info(int argc, char **argv)
     int rc = jd_options_command(&o, JD_OPT_INFO, "info", summary, argc, argv);
     if (rc >= 0) return rc;
     if (o.compile_only) return compile_all(&o);
+    if (o.list_boards) {
+        /* The frame-cost model's boards (core/board.c): what bench --device
+         * takes, and where each constant comes from. */
+        printf("%-12s %-8s %-14s %6s  %s\n", "board", "profile", "compiler", "MHz", "what");
+        for (int b = 0; b < jd_board_count; b++) {
+            const jd_board *d = &jd_boards[b];
+            printf("%-12s %-8s %-14s %6.0f  %s\n", d->name, d->profile, d->compiler, d->clock_mhz, d->summary);
+            printf("%-12s fill %.0f Mpix/s, fragment cost units %.0f per clock x %.0f lanes, vertex %.0f x %.0f, %s;"
+                   " %.1f GB/s\n", "", d->fill_rate * d->clock_mhz, d->fragment_rate, d->fragment_lanes, d->vertex_rate,
+                   d->vertex_lanes, d->units == JD_UNITS_SHARED ? "vertices and fragments share the cores"
+                                                                : "the vertex processor beside the pixel processors",
+                   d->dram_gbs);
+            printf("%-12s sources: %s\n", "", d->sources);
+        }
+        return 0;
+    }
     if (o.list_materials) {
         printf("%-10s %-22s %-25s %-4s %s\n", "material", "sigma_s' (mm^-1, RGB)", "sigma_a (mm^-1, RGB)", "eta",
                "source");

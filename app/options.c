@@ -1,5 +1,6 @@
 #include "options.h"
 
+#include "board.h"
 #include "profile.h"
 
 #include <errno.h>
@@ -86,8 +87,13 @@ static const opt table[] = {
     {"--diffusion-size", T_INT, OFF(rdesc.diffusion_size), 16, 2048, R | B, "N          full mode: first light-space diffusion level, texels per side [light map / 4]"},
     {"--compile", T_FLAG, OFF(compile_only), 0, 0, JD_OPT_INFO,
      "           build every shader program of every mode (as the renderer would for this device or --profile), draw nothing; a table, exit 1 if one fails"},
+    {"--boards", T_FLAG, OFF(list_boards), 0, 0, JD_OPT_INFO, "           list the boards of the frame-cost model (bench --device) and their constants' sources"},
+    {"--unroll-loops", T_INT, OFF(unroll_loops), 0, 8, JD_OPT_INFO,
+     "N          with --compile: dynamic loops at a constant N trips (tools/device-shaders.sh: the cost of a trip) [0: as shipped]"},
     {"--materials", T_FLAG, OFF(list_materials), 0, 0, JD_OPT_INFO, "           list the measured materials, their coefficients and where they come from"},
     {"--profile", T_STR, OFF(profile), 0, 0, R | B | JD_OPT_INFO, "NAME       emulate a device's limits: generic, vc4, mali400"},
+    {"--device", T_STR, OFF(device), 0, 0, B,
+     "BOARD      draw with the board's profile and estimate each mode's frame there (jade info --boards)"},
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},
     {"--antialias", T_ANTIALIAS, OFF(rdesc.antialias), 0, 0, R | B,
      "A          auto|off|post: edges by the target's multisampling, else a pass after the frame [auto]"},
@@ -466,6 +472,22 @@ int jd_options_finish(jd_options *o, const char *cmd)
             snprintf(have + strlen(have), sizeof have - strlen(have), "%s%s", i ? ", " : "", jd_profiles[i].name);
         fprintf(stderr, "jade %s: --profile: unknown profile '%s' (have: %s)\n", cmd, o->profile, have);
         return 0;
+    }
+    if (o->device) {
+        const jd_board *b = jd_board_find(o->device);
+        if (!b) {
+            char have[128] = "";
+            for (int i = 0; i < jd_board_count; i++)
+                snprintf(have + strlen(have), sizeof have - strlen(have), "%s%s", i ? ", " : "", jd_boards[i].name);
+            fprintf(stderr, "jade %s: --device: unknown board '%s' (have: %s)\n", cmd, o->device, have);
+            return 0;
+        }
+        if (o->profile && strcmp(o->profile, b->profile)) {
+            fprintf(stderr, "jade %s: --device %s draws with profile %s, not --profile %s\n", cmd, b->name, b->profile,
+                    o->profile);
+            return 0;
+        }
+        o->profile = b->profile;
     }
     if (!o->has_sigma_s) memcpy(o->scene.sigma_s, m->sigma_s, sizeof m->sigma_s);
     if (!o->has_sigma_a) memcpy(o->scene.sigma_a, m->sigma_a, sizeof m->sigma_a);

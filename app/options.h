@@ -35,6 +35,9 @@ typedef struct jd_options {
     int cycle_materials; /* bench */
     int compile_only;    /* info --compile */
     int list_materials;  /* info --materials */
+    int list_boards;     /* info --boards */
+    int unroll_loops;    /* info --compile --unroll-loops N */
+    const char *device;  /* bench --device: a board of the frame-cost model */
     float light_speed;   /* kiosk: degrees per second */
     const char *config;  /* kiosk: the configuration file */
     float idle_s;        /* kiosk: seconds without input before the camera returns */

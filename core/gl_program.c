@@ -8,6 +8,7 @@
 
 static const char *dump_dir;
 static int dump_count;
+static char extra_defines[128];
 static jd_program_observer observer;
 static void *observer_user;
 
@@ -18,6 +19,37 @@ void jd_program_observe(jd_program_observer fn, void *user)
 }
 
 void jd_program_dump_to(const char *dir) { dump_dir = dir; }
+
+void jd_program_extra_defines(const char *defines)
+{
+    snprintf(extra_defines, sizeof extra_defines, "%s", defines ? defines : "");
+}
+
+/* The tags a program's defines switch on, in the order the compiler table
+ * has always shown them. */
+static void tag(char *out, size_t cap, const char *defines, const char *name, const char *shown)
+{
+    const char *p = defines ? strstr(defines, name) : NULL;
+    if (p && p[strlen(name)] == ' ' && p[strlen(name) + 1] != '0') {
+        size_t n = strlen(out);
+        snprintf(out + n, cap - n, "%s%s", out[n - 1] == '[' ? "" : ",", shown);
+    }
+}
+
+void jd_program_label(const char *vs, const char *fs, const char *defines, char *out, size_t cap)
+{
+    const char *v = strrchr(vs, '/'), *f = strrchr(fs, '/');
+    snprintf(out, cap, "%s+%s[", v ? v + 1 : vs, f ? f + 1 : fs);
+    static const char *const tags[][2] = {
+        {"JD_TRANSLUCENT", "translucent"}, {"JD_SPREAD", "spread"}, {"JD_FULL", "full"},
+        {"JD_A0_ONLY", "a0"}, {"JD_WIDE_ONLY", "wide"}, {"JD_VERTEX_DIFFUSION", "vertex-diffusion"},
+        {"JD_VERTEX_THICKNESS", "vertex-thickness"}, {"JD_FIRST", "first"}, {"JD_COMBINE", "combine"},
+        {"JD_PACK_HIGHP", "highp"}};
+    for (size_t i = 0; i < sizeof tags / sizeof tags[0]; i++) tag(out, cap, defines, tags[i][0], tags[i][1]);
+    size_t n = strlen(out);
+    if (out[n - 1] == '[') out[n - 1] = 0;
+    else snprintf(out + n, cap - n, "]");
+}
 
 static void dump(const char *name, const char *const *parts, int n)
 {
@@ -86,10 +118,11 @@ static jd_result compile(GLenum type, const char *name, const char *defines, GLu
     const char *pack = jd_shader_text("shaders_es2/pack.glsl");
     const char *light = jd_shader_text("shaders_es2/light.glsl");
     if (!text || !pack || !light) return jd_fail(err, JD_ERR_ARG, "shader %s is not embedded in this build", name);
-    const char *parts[8];
+    const char *parts[10];
     int n = 0;
     parts[n++] = "#version 100\n";
     parts[n++] = defines ? defines : "";
+    parts[n++] = extra_defines;
     if (type == GL_FRAGMENT_SHADER)
         parts[n++] = "#define JD_FRAGMENT 1\n#if JD_PACK_HIGHP\nprecision highp float;\nprecision highp sampler2D;\n#else\n"
                      "precision mediump float;\nprecision mediump sampler2D;\n#endif\n"

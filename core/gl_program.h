@@ -2,6 +2,8 @@
 #ifndef JD_GL_PROGRAM_H
 #define JD_GL_PROGRAM_H
 
+#include <stddef.h>
+
 #include "gl.h"
 #include "jd_result.h"
 
@@ -28,6 +30,16 @@ jd_result jd_program_build(const char *vs_name, const char *fs_name, const char 
 typedef void (*jd_program_observer)(void *user, const char *vs, const char *fs, const char *defines, int result,
                                     const char *msg);
 void jd_program_observe(jd_program_observer fn, void *user);
+
+/* The label the compiler table (tests/device-shaders.expected) and the
+ * frame-cost model know a program by: "mesh.vert+shade.frag[full]". */
+void jd_program_label(const char *vs, const char *fs, const char *defines, char *out, size_t cap);
+
+/* Defines added to every program built from now on ("" or NULL: none):
+ * tools/device-shaders.sh builds every program again with JD_UNROLL 1 and
+ * 2 (dynamic loops at that constant trip count) to learn what one more
+ * trip costs on each compiler. */
+void jd_program_extra_defines(const char *defines);
 
 /* Tests: write every assembled shader source to dir (NULL: stop), named
  * NNN_<file>, exactly as the driver receives it. */

@@ -21,6 +21,8 @@ extern "C" {
 #include "material.h"
 #include "gl_caps.h"
 #include "profile.h"
+#include "board.h"
+#include "frame_cost.h"
 #include "renderer.h"
 
 #ifdef __cplusplus

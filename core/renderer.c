@@ -7,6 +7,7 @@
 
 #include "clock.h"
 #include "diffusion_fit.h"
+#include "frame_cost.h"
 #include "gl.h"
 #include "gl_program.h"
 #include "program_probe.h"
@@ -100,7 +101,7 @@ struct jd_renderer {
     /* GPUs without 32-bit indices draw a mesh over 65,536 vertices as chunks
      * that each fit 16 bits, their vertices copied (so shared edges are
      * bit-identical: no seam). None: one draw of the whole mesh. */
-    struct mesh_chunk { size_t index_offset, vertex_offset; uint32_t count; } *chunks;
+    struct mesh_chunk { size_t index_offset, vertex_offset; uint32_t count, vertices; } *chunks;
     int num_chunks;
     shade_prog shade[JD_MODE_COUNT], a0, wide_prog; /* wide_prog: full's levels at half resolution */
     GLuint depth_prog, capture_prog, project_prog, reduce_mid_prog, reduce_faces_prog, reduce_final_prog, blur_prog,
@@ -130,6 +131,19 @@ struct jd_renderer {
      * at the last frame, so a still scene reuses their results. */
     float light_key[16], view_key[24];
     int light_key_valid, view_key_valid;
+    /* Programs by id with the compiler table's label for them, for the
+     * frame-cost count. */
+    struct { GLuint id; char label[96]; } labels[40];
+    int num_labels;
+    /* jd_renderer_count's frame: its record (NULL in every other frame),
+     * the counting program, the vertices each mesh's draw shades under the
+     * vertex reuse asked for (whole mesh, proxy, capture proxy), and
+     * whether the open pass drew meshes (its fragments are read back). */
+    jd_frame_count *count;
+    GLuint count_prog;
+    GLint count_mvp;
+    double count_vertices[3];
+    int count_read, count_cleared;
 };
 
 /* ---- start-up ---------------------------------------------------------- */
@@ -284,11 +298,13 @@ static jd_result upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c
             ch->index_offset = ni * sizeof(uint16_t);
             ch->vertex_offset = nv * 6 * sizeof(float);
             ch->count = 0;
+            ch->vertices = 0;
         }
         for (int k = 0; k < 3; k++) {
             if (local[tri[k]] < 0) {
                 if (nv == v_cap) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_BUDGET, "mesh chunks: vertex copies over the scratch"); }
                 pack_vertex(v + 6 * nv++, m, tri[k], c, inv_r);
+                ch->vertices++;
                 local[tri[k]] = (int32_t)n_used;
                 used[n_used++] = tri[k];
             }
@@ -339,7 +355,7 @@ static jd_result check_limits(const jd_gl_caps *c, GLuint prog, const char *vs, 
 /* ES 2.0 cannot be asked how many varying vectors a program uses, so each
  * build states it (vec2..vec4 and float each take one under the packing
  * rules for jade's shaders) and it is checked against the device's. */
-static jd_result build(const jd_renderer *r, int varyings, const char *vs, const char *fs, const char *defines,
+static jd_result build(jd_renderer *r, int varyings, const char *vs, const char *fs, const char *defines,
                        const char *const *attribs, GLuint *out, jd_error *err)
 {
     if (varyings > r->d.caps->max_varying_vectors)
@@ -347,6 +363,15 @@ static jd_result build(const jd_renderer *r, int varyings, const char *vs, const
                        r->d.caps->max_varying_vectors);
     jd_result res = jd_program_build(vs, fs, defines, attribs, out, err);
     if (res == JD_OK) res = check_limits(r->d.caps, *out, vs, fs, err);
+    if (res == JD_OK) { /* a rebuilt program may take a freed id: the newest label wins */
+        int i = 0;
+        while (i < r->num_labels && r->labels[i].id != *out) i++;
+        if (i < (int)(sizeof r->labels / sizeof r->labels[0])) {
+            r->labels[i].id = *out;
+            jd_program_label(vs, fs, defines, r->labels[i].label, sizeof r->labels[i].label);
+            if (i == r->num_labels) r->num_labels++;
+        }
+    }
     return res;
 }
 
@@ -884,7 +909,7 @@ void jd_renderer_destroy(jd_renderer *r)
     if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
     glDeleteProgram(r->wide_prog.id);
-    GLuint progs[] = {r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_mid_prog, r->reduce_faces_prog,
+    GLuint progs[] = {r->count_prog, r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_mid_prog, r->reduce_faces_prog,
                       r->reduce_final_prog, r->irr_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id, r->aa_prog};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
     memset(r, 0, sizeof *r);
@@ -1051,19 +1076,154 @@ static void update_fit(jd_renderer *r, const jd_scene *s, const frame_params *f)
 
 static void bind_mesh(GLuint vbo, GLuint ibo);
 
+/* ---- the frame-cost count (jd_renderer_count) ----------------------------
+ * A counting frame runs the frame's passes as they are, but every mesh draw
+ * is made by the counting program with the same positions and transform
+ * (no jade shader discards, so a pass shades exactly the fragments its
+ * geometry passes the depth test with), adding 1/255 per fragment into
+ * the pass's target; the target is read back when the pass ends. Quads
+ * cover their viewport (or scissor box) once and are counted by area. */
+
+static jd_pass_count *counted(jd_renderer *r)
+{
+    jd_frame_count *c = r->count;
+    return c && c->num_passes > 0 ? &c->pass[c->num_passes - 1] : NULL;
+}
+
+/* The open pass's program: the current one, by its label. A second program
+ * into the same target opens a record of its own. */
+static jd_pass_count *counted_draw(jd_renderer *r)
+{
+    jd_pass_count *p = counted(r);
+    if (!p) return NULL;
+    GLint id = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &id);
+    const char *label = "?";
+    for (int i = 0; i < r->num_labels; i++)
+        if ((GLint)r->labels[i].id == id) label = r->labels[i].label;
+    if (p->program[0] && strcmp(p->program, label)) {
+        jd_frame_count *c = r->count;
+        if (c->num_passes == JD_COUNT_PASSES) { c->overflow = 1; return NULL; }
+        jd_pass_count *q = &c->pass[c->num_passes++];
+        *q = *p;
+        q->fragments = q->vertices = q->triangles = q->bytes_written = q->bytes_read = 0;
+        q->trips = 1;
+        p = q;
+    }
+    snprintf(p->program, sizeof p->program, "%s", label);
+    return p;
+}
+
+/* Quads: a viewport's (or scissor box's) area, once. */
+static void counted_quad(jd_renderer *r, double fragments, double vertices, double triangles)
+{
+    jd_pass_count *p = counted_draw(r);
+    if (!p) return;
+    p->fragments += fragments;
+    p->vertices += vertices;
+    p->triangles += triangles;
+}
+
+/* Textures a pass samples: their used regions, each texel once. */
+static void counted_read(jd_renderer *r, const target *t, double layers)
+{
+    jd_pass_count *p = counted(r);
+    if (p) p->bytes_read += (double)t->w * t->h * 4.0 * layers;
+}
+
+/* The open pass's loops run `trips` times (its program's dynamic loops). */
+static void counted_trips(jd_renderer *r, double trips)
+{
+    jd_pass_count *p = counted(r);
+    if (p) p->trips = trips;
+}
+
+/* Ends the open pass: fragments of mesh draws read back from its target,
+ * which is still bound (the counting adds to red, one per fragment). Mesh
+ * passes draw with one program each. */
+static void counted_close(jd_renderer *r)
+{
+    jd_pass_count *p = counted(r);
+    if (!p || !r->count_read) return;
+    r->count_read = 0;
+    uint8_t rows[32768];
+    int w = p->width, per = (int)(sizeof rows / 4) / (w > 0 ? w : 1);
+    if (per < 1) return;
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    double sum = 0;
+    for (int y = 0; y < p->height; y += per) {
+        int n = p->height - y < per ? p->height - y : per;
+        glReadPixels(0, y, w, n, GL_RGBA, GL_UNSIGNED_BYTE, rows);
+        for (int i = 0; i < w * n; i++) sum += rows[4 * i];
+    }
+    p->fragments += sum;
+}
+
+/* A pass begins: `what` it is, w x h of its target. */
+static void counted_open(jd_renderer *r, const char *what, int w, int h)
+{
+    jd_frame_count *c = r->count;
+    if (!c) return;
+    counted_close(r);
+    c->target_switches++;
+    if (c->num_passes == JD_COUNT_PASSES) { c->overflow = 1; return; }
+    jd_pass_count *p = &c->pass[c->num_passes++];
+    memset(p, 0, sizeof *p);
+    snprintf(p->pass, sizeof p->pass, "%s", what);
+    p->width = w;
+    p->height = h;
+    p->trips = 1;
+    p->bytes_written = (double)w * h * 4.0;
+    r->count_cleared = 0;
+}
+
+/* glDrawElements of one of the meshes (0 the whole mesh, 1 the proxy, 2
+ * the capture proxy) under `mvp`: in a counting frame, the counting draw,
+ * shading `vertices` (< 0: the mesh's whole draw). */
+static void draw_elements(jd_renderer *r, int mesh, const jd_mat4 *mvp, GLsizei count, GLenum type, const void *at,
+                          double vertices)
+{
+    jd_pass_count *p = r->count ? counted_draw(r) : NULL;
+    if (!p) {
+        glDrawElements(GL_TRIANGLES, count, type, at);
+        return;
+    }
+    GLint prog = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
+    if (!r->count_cleared) { /* the pass's own clear colour would be counted */
+        glClearColor(0, 0, 0, 0);
+        glClear(GL_COLOR_BUFFER_BIT);
+        r->count_cleared = 1;
+    }
+    glUseProgram(r->count_prog);
+    glUniformMatrix4fv(r->count_mvp, 1, GL_FALSE, mvp->m);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glDrawElements(GL_TRIANGLES, count, type, at);
+    glDisable(GL_BLEND);
+    glUseProgram((GLuint)prog);
+    p->vertices += vertices >= 0 ? vertices : r->count_vertices[mesh];
+    p->triangles += count / 3;
+    r->count_read = 1;
+}
+
 /* The whole mesh: one draw, or one per 16-bit chunk. */
-static void draw_mesh(const jd_renderer *r)
+static void draw_mesh(jd_renderer *r, const jd_mat4 *mvp)
 {
     bind_mesh(r->mesh_vbo, r->mesh_ibo);
     if (!r->num_chunks) {
-        glDrawElements(GL_TRIANGLES, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0);
+        draw_elements(r, 0, mvp, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0, -1);
         return;
     }
     for (int i = 0; i < r->num_chunks; i++) {
         const struct mesh_chunk *ch = &r->chunks[i];
         glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 24, (const void *)ch->vertex_offset);
         glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 24, (const void *)(ch->vertex_offset + 12));
-        glDrawElements(GL_TRIANGLES, (GLsizei)ch->count, GL_UNSIGNED_SHORT, (const void *)ch->index_offset);
+        /* A chunk's own vertices under the range model; under a FIFO, the
+         * whole mesh's misses shared out by triangles. */
+        double v = r->count_vertices[0] < 0 ? (double)ch->vertices
+                                            : r->count_vertices[0] * ch->count / (double)r->d.mesh->num_indices;
+        draw_elements(r, 0, mvp, (GLsizei)ch->count, GL_UNSIGNED_SHORT, (const void *)ch->index_offset, v);
     }
 }
 
@@ -1087,16 +1247,17 @@ static void bind_quad(const jd_renderer *r)
 
 /* The scissor keeps clears to the used corner of a power-of-two target. */
 /* Every render-target switch of a frame passes here, and is counted. */
-static void count_target(jd_renderer *r, int w, int h)
+static void count_target(jd_renderer *r, const char *what, int w, int h)
 {
+    counted_open(r, what, w, h);
     r->n_switches++;
     r->n_fragments += (double)w * h;
     r->n_bytes += (double)w * h * 4.0;
 }
 
-static void use_target(jd_renderer *r, const target *t)
+static void use_target(jd_renderer *r, const target *t, const char *what)
 {
-    count_target(r, t->w, t->h);
+    count_target(r, what, t->w, t->h);
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
     glViewport(0, 0, t->w, t->h);
     glScissor(0, 0, t->w, t->h);
@@ -1104,7 +1265,7 @@ static void use_target(jd_renderer *r, const target *t)
 
 static void pass_light_depth(jd_renderer *r, const frame_params *f)
 {
-    use_target(r, &r->light);
+    use_target(r, &r->light, "light-depth");
     glClearColor(1, 0, 0, 0); /* packed 1.0: nothing in front; no light */
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
@@ -1115,14 +1276,15 @@ static void pass_light_depth(jd_renderer *r, const frame_params *f)
     glUniform3f(r->depth_light_dir, f->light_dir.x, f->light_dir.y, f->light_dir.z);
     glUniform1f(r->depth_f0, f->f0);
     bind_mesh(r->proxy_vbo, r->proxy_ibo);
-    glDrawElements(GL_TRIANGLES, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0);
+    draw_elements(r, 1, &f->light_mvp, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0, -1);
 }
 
 static void pass_capture(jd_renderer *r, const frame_params *f)
 {
     int n = r->d.cube_size;
     float h = r->box_half;
-    use_target(r, &r->atlas);
+    use_target(r, &r->atlas, "capture");
+    counted_read(r, &r->light, 1);
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
@@ -1144,14 +1306,17 @@ static void pass_capture(jd_renderer *r, const frame_params *f)
         jd_mat4 mvp = jd_m4_mul(ortho, view);
         glViewport((face % 3) * n, (face / 3) * n, n, n);
         glUniformMatrix4fv(r->cap_mvp, 1, GL_FALSE, mvp.m);
-        glDrawElements(GL_TRIANGLES, (GLsizei)r->capture_proxy.num_indices, GL_UNSIGNED_SHORT, 0);
+        draw_elements(r, 2, &mvp, (GLsizei)r->capture_proxy.num_indices, GL_UNSIGNED_SHORT, 0, -1);
     }
 }
 
-static void draw_quad_into(jd_renderer *r, const target *t)
+/* A quad over all of t, reading `src` (NULL: nothing counted). */
+static void draw_quad_into(jd_renderer *r, const target *t, const char *what, const target *src)
 {
-    use_target(r, t);
+    use_target(r, t, what);
+    if (src) counted_read(r, src, 1);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    counted_quad(r, (double)t->w * t->h, 4, 2);
 }
 
 /* A polynomial in (1, fx, fy, fx^2, fy^2, fx fy). */
@@ -1252,8 +1417,10 @@ static void draw_projection(jd_renderer *r)
                               (const void *)(at * sizeof(float)));
         at += (size_t)sizes[i];
     }
-    use_target(r, &r->sh1);
+    use_target(r, &r->sh1, "sh-project");
+    counted_read(r, &r->atlas, 1);
     glDrawArrays(GL_TRIANGLES, 0, 6 * 6 * 27);
+    counted_quad(r, (double)r->sh1.w * r->sh1.h, 6 * 6 * 27, 2 * 6 * 27); /* the rectangles tile it */
     for (GLuint i = 2; i < 5; i++) glDisableVertexAttribArray(i);
     bind_quad(r);
 }
@@ -1275,19 +1442,19 @@ static void pass_sh(jd_renderer *r)
         glUniform1i(r->rm_src, 0);
         glUniform2f(r->rm_texel, 1.0f / r->sh1.tw, 1.0f / r->sh1.th);
         glBindTexture(GL_TEXTURE_2D, r->sh1.tex);
-        draw_quad_into(r, &r->sh_mid_t);
+        draw_quad_into(r, &r->sh_mid_t, "sh-reduce-mid", &r->sh1);
         src = &r->sh_mid_t;
     }
     glUseProgram(r->reduce_faces_prog);
     glUniform1i(r->rf_src, 0);
     glUniform2f(r->rf_texel, 1.0f / src->tw, 1.0f / src->th);
     glBindTexture(GL_TEXTURE_2D, src->tex);
-    draw_quad_into(r, &r->sh2);
+    draw_quad_into(r, &r->sh2, "sh-reduce-faces", src);
     glUseProgram(r->reduce_final_prog);
     glUniform1i(r->rl_src, 0);
     glUniform2f(r->rl_texel, 1.0f / r->sh2.tw, 1.0f / r->sh2.th);
     glBindTexture(GL_TEXTURE_2D, r->sh2.tex);
-    draw_quad_into(r, &r->sh3);
+    draw_quad_into(r, &r->sh3, "sh-reduce", &r->sh2);
     /* The coefficients stay on the GPU: they become the irradiance cube map
      * the shading pass reads (a read-back here would make a tile-based GPU
      * finish the frame so far while the CPU waits). Six tiny faces cost a
@@ -1305,7 +1472,7 @@ static void pass_sh(jd_renderer *r)
     };
     for (int f = 0; f < 6; f++) {
         glUniformMatrix3fv(r->irr_face, 1, GL_FALSE, frames[f]);
-        draw_quad_into(r, &r->irr[f]);
+        draw_quad_into(r, &r->irr[f], "irradiance", &r->sh3);
     }
 }
 
@@ -1384,30 +1551,34 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
 }
 
 static void blur(jd_renderer *r, GLint step_loc, GLint inv_loc, const target *src, const target *dst, float dx,
-                 float dy, float step, float inv2s2)
+                 float dy, float step, float inv2s2, const char *what)
 {
     glBindTexture(GL_TEXTURE_2D, src->tex);
     glUniform2f(step_loc, dx * step / (float)src->tw, dy * step / (float)src->th);
     glUniform1f(inv_loc, inv2s2);
-    draw_quad_into(r, dst);
+    draw_quad_into(r, dst, what, src);
 }
 
 /* A low-resolution layer drawn with a shading program: cleared to "not
  * covered" (alpha 0), depth-tested, culled as the main pass; of the whole
  * mesh (full's levels) or of the coarse capture proxy (the spread's A0). */
-static void draw_layer(jd_renderer *r, const target *t, const shade_prog *p, const frame_params *f, int whole_mesh)
+static void draw_layer(jd_renderer *r, const target *t, const shade_prog *p, const frame_params *f, int whole_mesh,
+                       const char *what)
 {
-    use_target(r, t);
+    use_target(r, t, what);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
     set_shade_uniforms(r, p, f, t->w, t->h);
+    counted_read(r, &r->light, 1);
     if (whole_mesh) {
-        draw_mesh(r);
+        for (int i = 0; i < r->diff_levels; i++) counted_read(r, &r->diff_lv[i], 1);
+        draw_mesh(r, &f->mvp);
     } else {
+        counted_read(r, &r->irr[0], 6);
         bind_mesh(r->cap_vbo, r->cap_ibo);
-        glDrawElements(GL_TRIANGLES, (GLsizei)r->capture_proxy.num_indices, GL_UNSIGNED_SHORT, 0);
+        draw_elements(r, 2, &f->mvp, (GLsizei)r->capture_proxy.num_indices, GL_UNSIGNED_SHORT, 0, -1);
     }
 }
 
@@ -1415,7 +1586,7 @@ static void pass_spread(jd_renderer *r, const frame_params *f)
 {
     /* A0 at low resolution from the coarse capture proxy: these layers are
      * blurred, so a finer mesh would buy nothing but vertex work. */
-    draw_layer(r, &r->spread0, &r->a0, f, 0);
+    draw_layer(r, &r->spread0, &r->a0, f, 0, "spread-a0");
 
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -1430,9 +1601,9 @@ static void pass_spread(jd_renderer *r, const frame_params *f)
     float st = sigma / step;
     float inv2s2 = 1.0f / (2.0f * st * st);
     /* A1 = G * A0; A2 = G * A1, whose last (vertical) pass also combines. */
-    blur(r, r->blur_step, r->blur_inv, &r->spread0, &r->spread_tmp, 1, 0, step, inv2s2);
-    blur(r, r->blur_step, r->blur_inv, &r->spread_tmp, &r->spread1, 0, 1, step, inv2s2);
-    blur(r, r->blur_step, r->blur_inv, &r->spread1, &r->spread_tmp, 1, 0, step, inv2s2);
+    blur(r, r->blur_step, r->blur_inv, &r->spread0, &r->spread_tmp, 1, 0, step, inv2s2, "spread-a1h");
+    blur(r, r->blur_step, r->blur_inv, &r->spread_tmp, &r->spread1, 0, 1, step, inv2s2, "spread-a1v");
+    blur(r, r->blur_step, r->blur_inv, &r->spread1, &r->spread_tmp, 1, 0, step, inv2s2, "spread-a2h");
     glUseProgram(r->combine_prog);
     glUniform1i(r->comb_src, 0);
     glUniform1i(r->comb_a1, 1);
@@ -1442,7 +1613,7 @@ static void pass_spread(jd_renderer *r, const frame_params *f)
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, r->spread1.tex);
     glActiveTexture(GL_TEXTURE0);
-    blur(r, r->comb_step, r->comb_inv, &r->spread_tmp, &r->spread2, 0, 1, step, inv2s2);
+    blur(r, r->comb_step, r->comb_inv, &r->spread_tmp, &r->spread2, 0, 1, step, inv2s2, "spread-a2v");
 }
 
 /* The full mode's light-space levels: level k is level k-1 blurred by the
@@ -1496,7 +1667,11 @@ static void pass_diffusion(jd_renderer *r, const frame_params *f)
             glUniform1fv(p->w, 2 * taps + 1, w);
             glUniform1f(p->near, near);
             glBindTexture(GL_TEXTURE_2D, from->tex);
-            draw_quad_into(r, to);
+            char what[24];
+            snprintf(what, sizeof what, "diffusion-%d%c", k + 1, pass ? 'v' : 'h');
+            draw_quad_into(r, to, what, from);
+            counted_read(r, &r->light, 1); /* the reference depths */
+            counted_trips(r, 2 * taps + 1);
         }
     }
 }
@@ -1506,12 +1681,13 @@ static void pass_diffusion(jd_renderer *r, const frame_params *f)
  * main pass. */
 static void pass_wide(jd_renderer *r, const frame_params *f)
 {
-    draw_layer(r, &r->wide, &r->wide_prog, f, 1);
+    draw_layer(r, &r->wide, &r->wide_prog, f, 1, "wide");
+    counted_trips(r, 4); /* jd_level_at's texels */
 }
 
 static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
-    count_target(r, r->d.width, r->d.height);
+    count_target(r, "main", r->d.width, r->d.height);
     glBindFramebuffer(GL_FRAMEBUFFER, r->post_aa ? r->scene.fbo : r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
     /* The anti-aliasing pass reads one texel past the frame's right and top
@@ -1531,7 +1707,13 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
     set_shade_uniforms(r, &r->shade[s->mode], f, r->d.width, r->d.height);
-    draw_mesh(r);
+    counted_read(r, &r->light, 1);
+    if (s->mode == JD_MODE_FULL && !r->vertex_diffusion) counted_read(r, &r->wide, 1);
+    if (s->mode == JD_MODE_FULL && r->vertex_diffusion)
+        for (int i = 0; i < r->diff_levels; i++) counted_read(r, &r->diff_lv[i], 1);
+    if (s->mode == JD_MODE_SINGLE || s->mode == JD_MODE_DUAL) counted_read(r, &r->irr[0], 6);
+    if (s->mode == JD_MODE_DUAL) counted_read(r, &r->spread2, 1);
+    draw_mesh(r, &f->mvp);
 }
 
 /* The frame from `scene` into the platform's target, its edges smoothed.
@@ -1539,7 +1721,7 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
  * more) is filtered; the rest is background, cleared. */
 static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
-    count_target(r, r->d.width, r->d.height);
+    count_target(r, "main-antialias", r->d.width, r->d.height);
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
     glScissor(0, 0, r->d.width, r->d.height);
@@ -1549,6 +1731,7 @@ static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params
     glClear(GL_COLOR_BUFFER_BIT);
     float x0 = 1, y0 = 1, x1 = -1, y1 = -1, h = r->box_half;
     int inside = 1;
+    double area = (double)r->d.width * r->d.height;
     for (int i = 0; i < 8; i++) {
         jd_vec3 p = jd_v3(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
         const float *m = f->mvp.m;
@@ -1565,6 +1748,7 @@ static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params
         px1 = px1 > r->d.width ? r->d.width : px1; py1 = py1 > r->d.height ? r->d.height : py1;
         if (px1 <= px0 || py1 <= py0) return;
         glScissor(px0, py0, px1 - px0, py1 - py0);
+        area = (double)(px1 - px0) * (py1 - py0);
     }
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -1576,6 +1760,9 @@ static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, r->scene.tex);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    counted_quad(r, area, 4, 2);
+    jd_pass_count *p = counted(r);
+    if (p) p->bytes_read += area * 4.0;
 }
 
 static void gpu_begin(jd_renderer *r, jd_frame_stats *st, int pass)
@@ -1713,4 +1900,65 @@ jd_result jd_renderer_read_capture(jd_renderer *r, uint8_t *atlas, uint8_t *sh27
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     if (n) *n = r->d.cube_size;
     return glGetError() == GL_NO_ERROR ? JD_OK : jd_fail(err, JD_ERR_GL, "reading the capture back failed");
+}
+
+/* Vertices a FIFO post-transform cache of n entries shades for the index
+ * stream (its misses); n = 0: the draw's index range, which Utgard and
+ * Midgard shade whole (Mesa lima_draw.c: max_index - min_index + 1). */
+static double shaded_vertices(const jd_mesh *m, int n)
+{
+    if (!m->num_indices) return 0;
+    if (n <= 0) {
+        uint32_t lo = UINT32_MAX, hi = 0;
+        for (uint32_t i = 0; i < m->num_indices; i++) {
+            uint32_t v = jd_mesh_index(m, i);
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+        return (double)(hi - lo) + 1.0;
+    }
+    uint32_t fifo[64];
+    if (n > 64) n = 64;
+    int head = 0, filled = 0;
+    double misses = 0;
+    for (uint32_t i = 0; i < m->num_indices; i++) {
+        uint32_t v = jd_mesh_index(m, i);
+        int hit = 0;
+        for (int k = 0; k < filled && !hit; k++) hit = fifo[k] == v;
+        if (hit) continue;
+        misses++;
+        fifo[head] = v;
+        head = (head + 1) % n;
+        if (filled < n) filled++;
+    }
+    return misses;
+}
+
+jd_result jd_renderer_count(jd_renderer *r, const jd_scene *s, int vertex_cache, jd_frame_count *out, jd_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!r->count_prog) {
+        static const char *const attribs[] = {"a_position", NULL};
+        jd_result res = jd_program_build("shaders_es2/count.vert", "shaders_es2/count.frag", "#define JD_PACK_HIGHP 0\n",
+                                         attribs, &r->count_prog, err);
+        if (res) return res;
+        r->count_mvp = glGetUniformLocation(r->count_prog, "u_mvp");
+    }
+    /* Chunks under the range model: each chunk's own vertex count. */
+    r->count_vertices[0] = r->num_chunks && vertex_cache <= 0 ? -1.0 : shaded_vertices(r->d.mesh, vertex_cache);
+    r->count_vertices[1] = shaded_vertices(&r->proxy, vertex_cache);
+    r->count_vertices[2] = shaded_vertices(&r->capture_proxy, vertex_cache);
+    /* Every pass runs, as in a frame whose light moved. */
+    r->light_key_valid = r->view_key_valid = 0;
+    r->count = out;
+    r->count_read = 0;
+    jd_result res = jd_renderer_frame(r, s, NULL, err);
+    counted_close(r);
+    r->count = NULL;
+    /* The targets hold counts: the next frame draws every pass again. */
+    r->light_key_valid = r->view_key_valid = 0;
+    glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
+    if (res == JD_OK && out->overflow)
+        return jd_fail(err, JD_ERR_BUDGET, "the frame has more than %d passes to count", JD_COUNT_PASSES);
+    return res;
 }

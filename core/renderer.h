@@ -4,6 +4,7 @@
 #define JD_RENDERER_H
 
 #include "arena.h"
+#include "frame_cost.h"
 #include "gl_caps.h"
 #include "material.h"
 #include "mesh.h"
@@ -135,6 +136,16 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
  * blending off, depth function GL_LESS, colour and depth writes on, front
  * faces counter-clockwise, back faces culled, stencil test off. */
 jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *stats,
+                            jd_error *err);
+/* What one frame of `s` asks of a tile-based GPU, pass by pass, for the
+ * frame-cost model (jd_frame_cost_estimate): each pass's target, program,
+ * fragments shaded (with overdraw, after the depth test: its mesh draws are
+ * made again by a counting program and the target read back), vertices
+ * shaded (vertex_cache 0: each draw's index range; N: a FIFO of N
+ * entries), triangles, and bytes written and read. Not a frame to show: it
+ * reads back and builds its counting program the first time; bench calls
+ * it outside the timed frames. */
+jd_result jd_renderer_count(jd_renderer *r, const jd_scene *s, int vertex_cache, jd_frame_count *out,
                             jd_error *err);
 /* Deletes the GL objects (the context must be current); the arena's bytes
  * are the caller's to reset. */

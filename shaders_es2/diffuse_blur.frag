@@ -70,8 +70,12 @@ void main()
     // unrolls (32). Unrolled, every tap's texel and coordinates were live
     // at once and lima spilled 12:80 of its 6 vec4 registers (322
     // instructions); one tap per pass round the loop, 0 spills and 69.
+#ifdef JD_UNROLL
+    for (int i = 0; i < JD_UNROLL; i++) { // the device-compiler tool: the cost of one trip more
+#else
     for (int i = 0; i <= 64; i++) {
         if (i > 2 * u_taps) break;
+#endif
         tap(v_uv + (float(i) - float(u_taps)) * u_step, u_w[i], zr, near, far, wsum);
     }
     vec4 acc = vec4(near, far);

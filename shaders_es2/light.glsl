@@ -64,8 +64,12 @@ float jd_level_at(sampler2D lv, vec3 p, float n, float s, float slack, float lit
     // must not look constant, or Mesa's NIR unrolls it: n > 0, so the break
     // comes after 4. A vertex stage unrolls it (as a loop, vc4's vertex
     // shader doubled in length).
+    // JD_UNROLL (the device-compiler tool only): a constant trip count, so
+    // the compilers' counts say what one more trip costs.
     float l = 0.0;
-#ifdef JD_FRAGMENT
+#if defined(JD_UNROLL)
+    for (int i = 0; i < JD_UNROLL; i++) {
+#elif defined(JD_FRAGMENT)
     for (int i = 0; i < 64; i++) {
         if (float(i) >= 4.0 * step(0.0, n)) break;
 #else

@@ -40,8 +40,27 @@ static int frame_check(const char *path, double min_span)
     return touches || span < min_span;
 }
 
+/* imgcmp --count A.png: how many pixels differ from the top-left corner's
+ * colour by more than 8 in a channel (the object's, on a plain background). */
+static int count_object(const char *path)
+{
+    int w, h, c;
+    unsigned char *a = stbi_load(path, &w, &h, &c, 4);
+    if (!a) { fprintf(stderr, "imgcmp: cannot read %s\n", path); return 2; }
+    long n = 0;
+    for (long i = 0; i < (long)w * h; i++) {
+        int d = 0;
+        for (int k = 0; k < 3; k++) d = d > abs(a[4 * i + k] - a[k]) ? d : abs(a[4 * i + k] - a[k]);
+        n += d > 8;
+    }
+    printf("%ld\n", n);
+    stbi_image_free(a);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 3 && !strcmp(argv[1], "--count")) return count_object(argv[2]);
     if (argc == 4 && !strcmp(argv[1], "--frame")) return frame_check(argv[2], atof(argv[3]));
     if (argc < 3) {
         fprintf(stderr, "usage: imgcmp A.png B.png [--max-rmse X] [--max-bad-frac F] [--bad-threshold T]\n");

@@ -1,11 +1,13 @@
 /* GL-free units: arena, math, mesh helpers, materials, Draco header, SH. */
 #include <math.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <string.h>
 
 #include "arena.h"
 #include "check.h"
 #include "draco_header.h"
+#include "frame_cost.h"
 #include "material.h"
 #include "mesh.h"
 #include "sh.h"
@@ -207,6 +209,74 @@ static void test_sh(void)
     CHECK(fabs(jd_unpack_bytes(px, 0) - (127 / 255.0 + 128 / 65025.0)) < 1e-12, "mediump decode");
 }
 
+/* The frame-cost model on cases whose answers are published: a program
+ * of one instruction over a whole 1080p screen runs at the board's fill
+ * rate; a bare vertex program over a mesh of shared vertices at its
+ * triangle rate. Each through jd_frame_cost_estimate, with a compiler
+ * table holding just those programs. */
+static void test_frame_cost(void)
+{
+    static const char table[] =
+        "lima           0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
+        "vc4            0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
+        "panfrost-t860  0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
+        "lima           1:loop.vert+loop.frag  vs    1 fs   69 spills   0 fills   0 cost vc    1 fc   69 f1   56 f2   77 - ok\n";
+    static const struct { const char *board; double mpix, mtri; } published[] = {
+        {"mali400-mp2", 1000.0, 55.0}, /* ARM: 500 Mpix/s and 55 Mtri/s per pixel processor / GP at 500 MHz */
+        {"mali450-mp3", 2250.0, 165.0}, /* 3 x 750 Mpix/s; 55 Mtri/s x 1.5 (clock) x 2 (vertex throughput) */
+        {"vc4", 1600.0, 0.0},          /* BCM2835: 1 Gpix/s at 250 MHz, scaled to 400 */
+        {"t860-mp4", 3200.0, 0.0},     /* one pixel per clock per core */
+    };
+    static jd_frame_count c;
+    static jd_estimate e;
+    jd_error err = {0};
+    for (size_t i = 0; i < sizeof published / sizeof published[0]; i++) {
+        const jd_board *b = jd_board_find(published[i].board);
+        CHECK(b != NULL, "board %s", published[i].board);
+        if (!b) continue;
+        memset(&c, 0, sizeof c);
+        c.num_passes = 1;
+        jd_pass_count *p = &c.pass[0];
+        snprintf(p->pass, sizeof p->pass, "main");
+        snprintf(p->program, sizeof p->program, "fill.vert+fill.frag");
+        p->width = 1920;
+        p->height = 1080;
+        p->fragments = 1920.0 * 1080.0;
+        p->trips = 1;
+        CHECK(jd_frame_cost_estimate(b, &c, table, &e, &err) == JD_OK, "%s: %s", b->name, err.msg);
+        double mpix = p->fragments / e.frame_ms / 1e3;
+        CHECK(fabs(mpix / published[i].mpix - 1.0) < 0.01, "%s: a one-instruction screen at %.0f Mpix/s, published %.0f",
+              b->name, mpix, published[i].mpix);
+        if (published[i].mtri > 0) {
+            /* A grid: half a vertex per triangle, nothing drawn. */
+            p->fragments = 0;
+            p->triangles = 1e6;
+            p->vertices = 5e5;
+            CHECK(jd_frame_cost_estimate(b, &c, table, &e, &err) == JD_OK, "%s: %s", b->name, err.msg);
+            double mtri = p->triangles / e.frame_ms / 1e3;
+            CHECK(fabs(mtri / published[i].mtri - 1.0) < 0.01, "%s: a bare vertex program at %.1f Mtri/s, published %.0f",
+                  b->name, mtri, published[i].mtri);
+        }
+    }
+    /* A loop's trips: 13 of them cost the program as built plus 12 times
+     * (one trip more at constant trips + what the loop itself adds). */
+    const jd_board *b = jd_board_find("mali400-mp2");
+    memset(&c, 0, sizeof c);
+    c.num_passes = 1;
+    snprintf(c.pass[0].program, sizeof c.pass[0].program, "loop.vert+loop.frag");
+    c.pass[0].fragments = 1000;
+    c.pass[0].trips = 13;
+    CHECK(jd_frame_cost_estimate(b, &c, table, &e, &err) == JD_OK, "%s", err.msg);
+    CHECK(fabs(e.pass[0].fs_cost - (69 + 12 * (21 + 13))) < 1e-9, "13 trips cost %g", e.pass[0].fs_cost);
+    snprintf(c.pass[0].program, sizeof c.pass[0].program, "nothing.vert+nothing.frag");
+    CHECK(jd_frame_cost_estimate(b, &c, table, &e, &err) == JD_ERR_ARG && strstr(err.msg, "nothing.vert+nothing.frag") &&
+              strstr(err.msg, "lima"),
+          "a program the table lacks is named: %s", err.msg);
+    /* The built-in table: the one CI checks. */
+    CHECK(strstr(jd_frame_cost_table(), "lima ") && strstr(jd_frame_cost_table(), "mesh.vert+shade.frag[full]"),
+          "the compiler table is built in");
+}
+
 int main(void)
 {
     test_arena();
@@ -216,5 +286,6 @@ int main(void)
     test_materials();
     test_draco_header();
     test_sh();
+    test_frame_cost();
     return jd_check_summary("units");
 }

@@ -94,48 +94,81 @@ shim() { find "$build" -name "lib$1_noop_drm_shim.so" -print -quit; }
 run_driver() { # NAME PROFILE SHIM ENV...
     name=$1 profile=$2 lib=$3
     shift 3
-    # A failed program makes jade exit 1: the table still gets its row.
-    rc=0
-    env LD_LIBRARY_PATH="$egl:$gles:$glapi:$gbm" LIBGL_DRIVERS_PATH="$dri" EGL_PLATFORM=surfaceless \
-        MESA_SHADER_CACHE_DISABLE=true LD_PRELOAD="$lib" "$@" \
-        timeout 300 "$jade" info --compile --profile "$profile" >"$cache/$name.log" 2>&1 || rc=$?
-    echo "$rc" > "$cache/$name.rc"
+    # Three builds: as shipped, then with every dynamic loop at a constant
+    # trip count of 1 and of 2 (jade info --unroll-loops): what one more
+    # trip costs, for the frame-cost model (core/frame_cost.c).
+    for unroll in 0 1 2; do
+        # A failed program makes jade exit 1: the table still gets its row.
+        rc=0
+        env LD_LIBRARY_PATH="$egl:$gles:$glapi:$gbm" LIBGL_DRIVERS_PATH="$dri" EGL_PLATFORM=surfaceless \
+            MESA_SHADER_CACHE_DISABLE=true LD_PRELOAD="$lib" "$@" \
+            timeout 300 "$jade" info --compile --profile "$profile" --unroll-loops $unroll \
+            >"$cache/$name.$unroll.log" 2>&1 || rc=$?
+        echo "$rc" > "$cache/$name.$unroll.rc"
+    done
 }
 run_driver lima mali400 "$(shim lima)" LIMA_DEBUG=precompile
 run_driver vc4 vc4 "$(shim vc4)" VC4_DEBUG=shaderdb
 run_driver panfrost-t720 generic "$(shim panfrost)" PAN_MESA_DEBUG=precompile PAN_GPU_ID=720
 run_driver panfrost-t860 generic "$(shim panfrost)" PAN_MESA_DEBUG=precompile PAN_GPU_ID=860
 
-# 4. One row per driver and program.
-table=$cache/device-shaders.table
-for d in lima vc4 panfrost-t720 panfrost-t860; do
-    awk -v drv="$d" -v rc="$(cat "$cache/$d.rc")" '
+# 4. One row per driver and program. The cost columns are what the
+#    frame-cost model charges per vertex and per fragment, in each
+#    compiler's own unit: lima's instruction words; vc4's estimated cycles
+#    (its scheduler counts the texture waits a single-threaded shader
+#    stalls on) or, for a two-threaded fragment shader, its instructions;
+#    panfrost's bundles. fc: the program as built; f1, f2: with its dynamic
+#    loops at 1 and 2 trips (equal to fc where it has none).
+rows() { # DRIVER UNROLL
+    awk -v drv="$1" -v rc="$(cat "$cache/$1.$2.rc")" '
         function flush() {
             if (label == "") return
             if (status == "") status = "ok"
-            printf "%-14s %-62s vs %4s fs %4s spills %3d fills %3d %-9s %s\n", drv, label, vs == "" ? "-" : vs,
-                   fs == "" ? "-" : fs, spills, fills, extra == "" ? "-" : extra, status
+            printf "%-14s %-62s vs %4s fs %4s spills %3d fills %3d %s %s %-9s %s\n", drv, label, vs == "" ? "-" : vs,
+                   fs == "" ? "-" : fs, spills, fills, vc == "" ? "-" : vc, fc == "" ? "-" : fc, extra == "" ? "-" : extra, status
             label = ""
         }
-        /^jade: compiling program / { flush(); label = $4 $5; vs = fs = extra = status = ""; spills = fills = 0; next }
+        /^jade: compiling program / { flush(); label = $4 $5; vs = fs = vc = fc = extra = status = ""; spills = fills = 0; next }
         /shader compiler: / {
             line = $0; sub(/.*shader compiler: /, "", line)
             if (line ~ /COORD/) next   # vc4: the binning copy of the vertex shader
             n = split(line, w, /[ ,]+/)
-            inst = ""; for (i = 1; i < n; i++) if (w[i + 1] == "inst") inst = w[i]
+            inst = cyc = bdl = thr = ""
+            for (i = 1; i < n; i++) {
+                if (w[i + 1] == "inst") inst = w[i]
+                if (w[i + 1] == "estimated-cycles") cyc = w[i]
+                if (w[i + 1] == "bundles") bdl = w[i]
+                if (w[i + 1] == "threads") thr = w[i]
+            }
+            cost = bdl != "" ? bdl : cyc != "" && thr == 1 ? cyc : inst
             for (i = 1; i < n; i++) {
                 if (w[i + 1] == "spills:fills") { split(w[i], sf, ":"); spills += sf[1]; fills += sf[2] }
                 if (w[i + 1] == "threads") extra = extra (extra == "" ? "" : "/") w[i] "thr"
                 if (w[i + 1] == "registers") extra = extra (extra == "" ? "" : "/") w[i] "reg"
                 if (w[i + 1] == "uniforms" && line !~ /VERTEX|vertex/) extra = extra (extra == "" ? "" : "/") w[i] "unif"
             }
-            if (line ~ /^(VS|vertex|MESA_SHADER_VERTEX|vs)/ || line ~ /^VERT/) vs = inst; else fs = inst
+            if (line ~ /^(VS|vertex|MESA_SHADER_VERTEX|vs)/ || line ~ /^VERT/) { vs = inst; vc = cost } else { fs = inst; fc = cost }
             next
         }
         /Failed to register allocate/ { status = "FAILED:register-allocation" }
         /^program +[0-9]+ .*FAILED/ { status = "FAILED:" $0; gsub(/ /, "_", status) }
         END { flush(); if (rc != 0 && rc != 1) printf "%-14s %-62s exit %s (see the log)\n", drv, "(run)", rc }
-    ' "$cache/$d.log"
+    ' "$cache/$1.$2.log"
+}
+table=$cache/device-shaders.table
+for d in lima vc4 panfrost-t720 panfrost-t860; do
+    rows "$d" 0 > "$cache/$d.rows0"
+    rows "$d" 1 > "$cache/$d.rows1"
+    rows "$d" 2 > "$cache/$d.rows2"
+    # Row by row (the same programs in the same order): the costs of the
+    # two unrolled builds join the shipped build's row.
+    awk '
+        FILENAME == ARGV[1] { f1[FNR] = $12; next }
+        FILENAME == ARGV[2] { f2[FNR] = $12; next }
+        $3 != "vs" { print; next }
+        { printf "%-14s %-62s vs %4s fs %4s spills %3d fills %3d cost vc %4s fc %4s f1 %4s f2 %4s %-9s %s\n",
+                 $1, $2, $4, $6, $8, $10, $11, $12, f1[FNR] == "" ? "-" : f1[FNR], f2[FNR] == "" ? "-" : f2[FNR], $13, $14 }
+    ' "$cache/$d.rows1" "$cache/$d.rows2" "$cache/$d.rows0"
 done > "$table"
 echo "device-shaders: one row per driver and program (instructions per stage as each compiler counts them):"
 cat "$table"

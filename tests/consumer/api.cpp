@@ -74,6 +74,10 @@ int main()
         FN(jd_platform_time_ms),
         FN(jd_profile_apply),
         FN(jd_profile_find),
+        FN(jd_board_find),
+        FN(jd_frame_cost_table),
+        FN(jd_frame_cost_estimate),
+        FN(jd_renderer_count),
         FN(jd_quit_on_signals),
         FN(jd_quit_requested),
         FN(jd_reload_count),
@@ -116,6 +120,17 @@ int main()
     jd_mode m;
     ok = ok && jd_mode_parse("dual", &m) == 1 && std::strcmp(jd_mode_name(m), "dual") == 0 && jd_pass_name(0) != nullptr;
     ok = ok && jd_material_find("skin1") != nullptr && jd_profile_find("mali400") != nullptr;
+    {
+        static jd_frame_count fc;
+        static jd_estimate est;
+        fc.num_passes = 1;
+        std::snprintf(fc.pass[0].program, sizeof fc.pass[0].program, "mesh.vert+shade.frag[full]");
+        fc.pass[0].fragments = 1000;
+        fc.pass[0].trips = 1;
+        const jd_board *b = jd_board_find("mali400-mp2");
+        ok = ok && b && jd_frame_cost_table() != nullptr &&
+             jd_frame_cost_estimate(b, &fc, nullptr, &est, &err) == JD_OK && est.frame_ms > 0.0;
+    }
     ok = ok && jd_fail(&err, JD_ERR_ARG, "x %d", 1) == JD_ERR_ARG && std::strcmp(err.msg, "x 1") == 0 &&
          jd_result_name(JD_ERR_ARG) != nullptr;
     jd_vec3 v = jd_v3_norm(jd_v3_cross(jd_v3(1, 0, 0), jd_v3(0, 1, 0)));
