@@ -45,6 +45,8 @@ static int compile_all(jd_options *o)
     /* Nothing drawn: the drm-shim drivers never signal a fence, and a
      * failed program is reported here, not fallen back from. */
     o->rdesc.program_probe = JD_PROBE_OFF;
+    /* A picture drawn smaller: its enlarging pass is built too. */
+    o->rdesc.render_scale = 0.5f;
     jd_session s;
     /* The session passes the driver's messages on (the compiler's among
      * them) as they come, between this program's two lines. */

@@ -99,6 +99,8 @@ static const opt table[] = {
      "A          auto|off|post: edges by the target's multisampling, else a pass after the frame [auto]"},
     {"--program-probe", T_PROBE, OFF(rdesc.program_probe), 0, 0, R | B,
      "P          auto|on|off: draw every shader program once at start-up to find ones the driver drops [auto: GPUs, not llvmpipe]"},
+    {"--render-scale", T_FLOAT, OFF(rdesc.render_scale), 0.25, 1, R | B,
+     "X          draw the picture at X of its size and enlarge it [the device's tier: 1, less on Mali-400 and VideoCore IV from 1280x960]"},
     {"--fragment-thickness", T_FLAG, OFF(rdesc.fragment_thickness), 0, 0, R | B, "           thickness per fragment, not per vertex (coarse meshes)"},
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
     {"--light-speed", T_FLOAT, OFF(light_speed), -3600, 3600, K,

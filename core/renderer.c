@@ -82,6 +82,9 @@ struct jd_renderer {
     int vertex_diffusion; /* the full mode's levels summed in the vertex stage */
     int target_samples;   /* GL_SAMPLES of the platform's target */
     int post_aa;          /* frames go to `scene`, then through the anti-aliasing pass */
+    int may_scale;        /* render_scale may be under 1 at some size: `scene` and the upscale pass exist */
+    int iw, ih;           /* the picture's passes' size: width x height, or less (render_scale) */
+    char tier[200];       /* what the tier draws at, for jd_renderer_info */
     int sh_block;         /* capture texels per SH projection pixel, per side (8, or 2 on small register files) */
     int sh_mid;           /* > 1: an intermediate reduction by sh_mid x sh_mid, so no pass sums over 64 texels */
     jd_mode shown[JD_MODE_COUNT]; /* what a frame asking for each mode draws (build_programs) */
@@ -107,8 +110,8 @@ struct jd_renderer {
     GLuint depth_prog, capture_prog, project_prog, reduce_mid_prog, reduce_faces_prog, reduce_final_prog, blur_prog,
         combine_prog;
     diff_prog diff_first, diff_next; /* level 1 from the light map; the others */
-    GLuint aa_prog;
-    GLint aa_src, aa_texel, aa_scale;
+    GLuint aa_prog, up_prog;
+    GLint aa_src, aa_texel, aa_scale, up_src, up_scale;
     GLint depth_mvp, depth_light_dir, depth_f0;
     GLint cap_mvp, cap_light_mvp, cap_light_dir, cap_bias, cap_depth, cap_light_color;
     GLint proj_atlas, proj_texel, rm_src, rm_texel, rf_src, rf_texel, rl_src, rl_texel;
@@ -118,10 +121,13 @@ struct jd_renderer {
     GLint comb_src, comb_step, comb_inv, comb_a1, comb_w1, comb_w2, comb_scale;
     target light, atlas, sh1, sh_mid_t, sh2, sh3, irr[6], spread0, spread_tmp, spread1, spread2;
     target diff_tmp, diff_lv[DIFF_TEXTURES];
-    target scene;         /* the frame before anti-aliasing (post_aa only) */
-    target wide;          /* full's levels summed at half resolution (without vertex diffusion) */
+    target scene;         /* the frame before anti-aliasing or enlarging (post_aa, or drawn smaller) */
+    target wide;          /* full's levels summed at 1/wide_div resolution (without vertex diffusion) */
+    int wide_div;
     size_t target_bytes;
     float box_half;
+    jd_vec3 place_c;      /* the mesh's coordinates to the renderer's: (p - place_c) * place_inv_r */
+    float place_inv_r;
     /* What a tiler would pay this frame: render-target switches (each one
      * writes the tile memory out), pixels shaded (by target area), bytes
      * written to render targets, read-backs. */
@@ -579,6 +585,13 @@ static jd_result build_full(jd_renderer *r, jd_error *err)
 
 static jd_result build_antialias(jd_renderer *r, jd_error *err)
 {
+    if (r->may_scale) {
+        jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/upscale.frag", "#define JD_PACK_HIGHP 0\n",
+                              quad_attribs, &r->up_prog, err);
+        if (res) return res;
+        r->up_src = glGetUniformLocation(r->up_prog, "u_src");
+        r->up_scale = glGetUniformLocation(r->up_prog, "u_uv_scale");
+    }
     if (!r->post_aa) return JD_OK;
     jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/antialias.frag", "#define JD_PACK_HIGHP 0\n",
                           quad_attribs, &r->aa_prog, err);
@@ -616,7 +629,7 @@ static int group_programs(jd_renderer *r, int g, GLuint **out)
         out[n++] = &r->shade[JD_MODE_FULL].id; out[n++] = &r->wide_prog.id; out[n++] = &r->diff_first.id;
         out[n++] = &r->diff_next.id;
         break;
-    default: out[n++] = &r->aa_prog; break;
+    default: out[n++] = &r->aa_prog; out[n++] = &r->up_prog; break;
     }
     return n;
 }
@@ -726,7 +739,7 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
             drop_group(r, g);
             say(r, "%s unavailable: %s", group_what[g], gerr[g].msg);
         }
-    if (!ok[GROUP_AA]) r->post_aa = 0;
+    if (!ok[GROUP_AA]) r->post_aa = r->may_scale = 0; /* frames at the full resolution, edges as they come */
     int have[JD_MODE_COUNT] = {1, ok[GROUP_SH], ok[GROUP_SH] && ok[GROUP_SPREAD], ok[GROUP_FULL]};
     for (int m = 0; m < JD_MODE_COUNT; m++) {
         int shown = m;
@@ -738,6 +751,28 @@ static jd_result build_programs(jd_renderer *r, jd_error *err)
 }
 
 static jd_result build_projection_quads(jd_renderer *r, jd_arena *a, jd_error *err);
+
+/* The boards whose tier draws less than jade's full quality (the
+ * frame-cost model, docs/frame-cost.md): Mali-400/450 and VideoCore IV, by
+ * renderer string or profile. NULL for any other GPU. */
+static const char *tier_board(const jd_gl_caps *c)
+{
+    if (c->utgard || !strcmp(c->profile, "mali400")) return "Mali-400/450";
+    if (!strcmp(c->profile, "vc4") || strstr(c->renderer, "VC4") || strstr(c->renderer, "VideoCore")) return "VideoCore IV";
+    return NULL;
+}
+
+/* The share of the picture's size a device's tier draws at (render_scale
+ * 0): on those boards full's main pass at 1920x1080 alone takes 27 ms
+ * (Mali-400 MP2) and a close-up's 24 ms (VideoCore IV), so pictures over
+ * 960x540 pixels are drawn at that many and enlarged. */
+static float tier_scale(const jd_renderer *r, int w, int h, const char **why)
+{
+    *why = tier_board(r->d.caps);
+    double budget = 960.0 * 540.0;
+    if (!*why || (double)w * h <= budget * 1.05) return 1.0f;
+    return (float)sqrt(budget / ((double)w * h));
+}
 
 void jd_renderer_desc_defaults(jd_renderer_desc *d)
 {
@@ -814,6 +849,11 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     glGetIntegerv(GL_SAMPLES, &samples);
     r->target_samples = samples;
     r->post_aa = d->antialias == JD_AA_POST || (d->antialias == JD_AA_AUTO && samples <= 1);
+    if (d->render_scale != 0.0f && !(d->render_scale >= 0.25f && d->render_scale <= 1.0f))
+        return jd_fail(err, JD_ERR_ARG, "render scale %g must be 0 (the device's tier) or 0.25..1", (double)d->render_scale);
+    const char *why;
+    r->may_scale = (d->render_scale > 0.0f && d->render_scale < 1.0f) ||
+                   (d->render_scale == 0.0f && tier_scale(r, d->max_width, d->max_height, &why) < 1.0f);
 
     int chunked = d->mesh->index_size == 4 && !d->caps->ext_element_index_uint;
     jd_result res = jd_mesh_build_proxy(d->mesh, d->proxy_cells, a, &r->proxy, err);
@@ -827,6 +867,8 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     jd_vec3 c, ext = jd_v3_sub(m->bmax, m->bmin);
     float radius;
     jd_mesh_placement(m, &c, &radius);
+    r->place_c = c;
+    r->place_inv_r = 1.0f / radius;
     r->box_half = 0.5f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius * 1.01f;
     /* Vertex clustering moves a vertex by at most a cell's diagonal; the
      * surface between, by about half of that. */
@@ -879,7 +921,8 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     if (!r->vertex_diffusion &&
         (res = make_target(r, &r->wide, (d->max_width + 1) / 2, (d->max_height + 1) / 2, 1, 1, "full's levels", err)))
         goto fail;
-    if (r->post_aa && (res = make_target(r, &r->scene, d->max_width, d->max_height, 1, 1, "frame before anti-aliasing", err)))
+    if ((r->post_aa || r->may_scale) &&
+        (res = make_target(r, &r->scene, d->max_width, d->max_height, 1, 1, "frame before anti-aliasing", err)))
         goto fail;
     for (int i = 0; i < DIFF_TEXTURES; i++)
         if ((res = make_target(r, &r->diff_lv[i], d->diffusion_size >> (i / 2), d->diffusion_size >> (i / 2), 0, 1,
@@ -909,7 +952,7 @@ void jd_renderer_destroy(jd_renderer *r)
     if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
     glDeleteProgram(r->wide_prog.id);
-    GLuint progs[] = {r->count_prog, r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_mid_prog, r->reduce_faces_prog,
+    GLuint progs[] = {r->count_prog, r->up_prog, r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_mid_prog, r->reduce_faces_prog,
                       r->reduce_final_prog, r->irr_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id, r->aa_prog};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
     memset(r, 0, sizeof *r);
@@ -925,8 +968,25 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
                        r->d.max_height);
     r->d.width = width;
     r->d.height = height;
+    /* The picture's passes at render_scale of the size, or the tier's. */
+    const char *why = NULL;
+    float scale = r->d.render_scale > 0.0f ? r->d.render_scale : tier_scale(r, width, height, &why);
+    r->iw = width;
+    r->ih = height;
+    r->tier[0] = 0;
+    if (scale < 1.0f && r->may_scale) {
+        r->iw = (int)ceilf((float)width * scale);
+        r->ih = (int)ceilf((float)height * scale);
+        snprintf(r->tier, sizeof r->tier, "%dx%d drawn at %dx%d and enlarged (%s%s%g)", width, height, r->iw, r->ih,
+                 why ? why : "", why ? "'s tier: render scale " : "render scale ", (double)scale);
+    }
+    width = r->iw;
+    height = r->ih;
     r->scene.w = width;
     r->scene.h = height;
+    /* full's levels' sum: half the picture's resolution until a frame
+     * says how large a level texel is on screen (jd_renderer_frame). */
+    r->wide_div = 2;
     r->wide.w = (width + 1) / 2;
     r->wide.h = (height + 1) / 2;
     int div = r->d.spread_divisor;
@@ -947,6 +1007,9 @@ void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
     info->gpu_timer = r->tq.ok;
     info->target_samples = r->target_samples;
     info->post_antialias = r->post_aa;
+    info->render_width = r->iw;
+    info->render_height = r->ih;
+    info->tier = r->tier[0] ? r->tier : NULL;
     info->proxy = &r->proxy;
 }
 
@@ -964,6 +1027,7 @@ typedef struct frame_params {
     float w0[3], w1[3], w2[3];
     float inv_eta, inset;
     float mm_per_world, blur_sigma_px;
+    float px_per_world;   /* the picture's passes' pixels per world unit at the object's centre */
     float light_map[4], shadow_bias[2];
 } frame_params;
 
@@ -1024,8 +1088,9 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
 
     /* The paper's spread width, sigma = 2 sigma_s, read as millimetres and
      * turned into pixels of the low-resolution buffer at the object's depth. */
-    double world_per_px = 2.0 * dist * tan(fov * M_PI / 360.0) / (quarter ? r->d.width : r->d.height) *
+    double world_per_px = 2.0 * dist * tan(fov * M_PI / 360.0) / (quarter ? r->iw : r->ih) *
                           r->d.spread_divisor;
+    f->px_per_world = (float)(r->d.spread_divisor / world_per_px);
     f->blur_sigma_px = (float)(2.0 * mean_ss / (world_per_px * f->mm_per_world));
     if (f->blur_sigma_px < 0.25f) f->blur_sigma_px = 0.25f;
     if (f->blur_sigma_px > 24.0f) f->blur_sigma_px = 24.0f;
@@ -1643,7 +1708,14 @@ static void pass_diffusion(jd_renderer *r, const frame_params *f)
         /* First-level texels per source texel. */
         float per_src = k == 0 ? (float)r->d.diffusion_size / (float)r->d.light_map_size : (float)(1 << ((k - 1) / 2));
         float sig = inc / per_src; /* in source texels, also tmp's rows */
-        float step = fmaxf(sig * 3.0f / DIFF_TAPS, 1.0f), st = sig / step;
+        /* The first level reads the light map, sharp in both directions
+         * (its second pass still sharp across): taps half a sigma apart.
+         * Later levels read a level already blurred by sigma_(k-1), at
+         * least 1/sqrt(3) of this step's increment: taps a sigma apart (3
+         * a side, not 6) sample it without a ripple (the Gaussian's alias
+         * at that spacing is exp(-2 pi^2 / 3), 0.1%), at half the cost. */
+        float spacing = k == 0 ? sig * 3.0f / DIFF_TAPS : sig;
+        float step = fmaxf(spacing, 1.0f), st = sig / step;
         /* Light within 1.5 sigma (and two map texels) of a texel's own
          * surface in depth is that surface's; the rest came from elsewhere. */
         float near = 1.5f * sigma * texel + 2.0f * map_texel + f->light_map[3];
@@ -1687,26 +1759,30 @@ static void pass_wide(jd_renderer *r, const frame_params *f)
 
 static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
-    count_target(r, "main", r->d.width, r->d.height);
-    glBindFramebuffer(GL_FRAMEBUFFER, r->post_aa ? r->scene.fbo : r->d.target_fbo);
-    glViewport(0, 0, r->d.width, r->d.height);
-    /* The anti-aliasing pass reads one texel past the frame's right and top
+    /* Into the target, or into `scene` for the pass after: anti-aliasing,
+     * or enlarging a picture drawn smaller. */
+    int via_scene = r->post_aa || r->iw != r->d.width || r->ih != r->d.height;
+    int w = r->iw, h = r->ih;
+    /* "main": at the picture's resolution (the frame-cost model's name). */
+    count_target(r, w == r->d.width && h == r->d.height ? "main" : "shade-scaled", w, h);
+    glBindFramebuffer(GL_FRAMEBUFFER, via_scene ? r->scene.fbo : r->d.target_fbo);
+    glViewport(0, 0, w, h);
+    /* The pass after reads one texel past the frame's right and top
      * edges: where the texture is larger than the frame (power-of-two
      * sizes, a window made smaller), that texel is cleared too, or the
      * edge column takes whatever the texture held. */
-    if (r->post_aa)
-        glScissor(0, 0, r->d.width < r->scene.tw ? r->d.width + 1 : r->d.width,
-                  r->d.height < r->scene.th ? r->d.height + 1 : r->d.height);
+    if (via_scene)
+        glScissor(0, 0, w < r->scene.tw ? w + 1 : w, h < r->scene.th ? h + 1 : h);
     else
-        glScissor(0, 0, r->d.width, r->d.height);
+        glScissor(0, 0, w, h);
     float bg[3];
     for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f)); /* display gamma 2, as the shader */
     glClearColor(bg[0], bg[1], bg[2], 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glScissor(0, 0, r->d.width, r->d.height);
+    glScissor(0, 0, w, h);
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
-    set_shade_uniforms(r, &r->shade[s->mode], f, r->d.width, r->d.height);
+    set_shade_uniforms(r, &r->shade[s->mode], f, w, h);
     counted_read(r, &r->light, 1);
     if (s->mode == JD_MODE_FULL && !r->vertex_diffusion) counted_read(r, &r->wide, 1);
     if (s->mode == JD_MODE_FULL && r->vertex_diffusion)
@@ -1721,7 +1797,7 @@ static void pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
  * more) is filtered; the rest is background, cleared. */
 static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
-    count_target(r, "main-antialias", r->d.width, r->d.height);
+    count_target(r, r->post_aa ? "main-antialias" : "main-upscale", r->d.width, r->d.height);
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
     glScissor(0, 0, r->d.width, r->d.height);
@@ -1729,17 +1805,28 @@ static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params
     for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f));
     glClearColor(bg[0], bg[1], bg[2], 1);
     glClear(GL_COLOR_BUFFER_BIT);
-    float x0 = 1, y0 = 1, x1 = -1, y1 = -1, h = r->box_half;
+    /* The object's extent on screen: the proxy's vertices projected, and
+     * as far again as the mesh may lie from its proxy (proxy_error, at the
+     * nearest vertex's depth). The bunny's box corners took 2.6 times the
+     * pixels at 1080p, each one a fragment of this pass. */
+    float x0 = 1, y0 = 1, x1 = -1, y1 = -1, w_min = 1e30f;
     int inside = 1;
     double area = (double)r->d.width * r->d.height;
-    for (int i = 0; i < 8; i++) {
-        jd_vec3 p = jd_v3(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
-        const float *m = f->mvp.m;
+    const float *m = f->mvp.m;
+    for (uint32_t i = 0; i < r->proxy.num_vertices && inside; i++) {
+        const float *q = r->proxy.positions + 3 * i;
+        jd_vec3 p = jd_v3_scale(jd_v3_sub(jd_v3(q[0], q[1], q[2]), r->place_c), r->place_inv_r);
         float cx = m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12], cy = m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13];
         float cw = m[3] * p.x + m[7] * p.y + m[11] * p.z + m[15];
         if (cw <= 1e-4f) { inside = 0; break; } /* behind the camera: filter everything */
         x0 = fminf(x0, cx / cw); x1 = fmaxf(x1, cx / cw);
         y0 = fminf(y0, cy / cw); y1 = fmaxf(y1, cy / cw);
+        w_min = fminf(w_min, cw);
+    }
+    if (inside) { /* world units to NDC at the nearest depth: the transform's scale over w */
+        float sx = sqrtf(m[0] * m[0] + m[4] * m[4] + m[8] * m[8]), sy = sqrtf(m[1] * m[1] + m[5] * m[5] + m[9] * m[9]);
+        float e = r->proxy_error * fmaxf(sx, sy) / w_min;
+        x0 -= e; x1 += e; y0 -= e; y1 += e;
     }
     if (inside) {
         int px0 = (int)floorf((x0 * 0.5f + 0.5f) * r->d.width) - 2, px1 = (int)ceilf((x1 * 0.5f + 0.5f) * r->d.width) + 2;
@@ -1753,16 +1840,24 @@ static void pass_antialias(jd_renderer *r, const jd_scene *s, const frame_params
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     bind_quad(r);
-    glUseProgram(r->aa_prog);
-    glUniform1i(r->aa_src, 0);
-    glUniform2f(r->aa_texel, 1.0f / (float)r->scene.tw, 1.0f / (float)r->scene.th);
-    glUniform2f(r->aa_scale, (float)r->scene.w / (float)r->scene.tw, (float)r->scene.h / (float)r->scene.th);
+    /* The quad spans the target; its texture coordinates the used part of
+     * `scene`, whatever its size: drawn smaller, it is enlarged here. */
+    if (r->post_aa) {
+        glUseProgram(r->aa_prog);
+        glUniform1i(r->aa_src, 0);
+        glUniform2f(r->aa_texel, 1.0f / (float)r->scene.tw, 1.0f / (float)r->scene.th);
+        glUniform2f(r->aa_scale, (float)r->scene.w / (float)r->scene.tw, (float)r->scene.h / (float)r->scene.th);
+    } else {
+        glUseProgram(r->up_prog);
+        glUniform1i(r->up_src, 0);
+        glUniform2f(r->up_scale, (float)r->scene.w / (float)r->scene.tw, (float)r->scene.h / (float)r->scene.th);
+    }
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, r->scene.tex);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     counted_quad(r, area, 4, 2);
     jd_pass_count *p = counted(r);
-    if (p) p->bytes_read += area * 4.0;
+    if (p) p->bytes_read += area * 4.0 * ((double)r->iw / r->d.width) * ((double)r->ih / r->d.height);
 }
 
 static void gpu_begin(jd_renderer *r, jd_frame_stats *st, int pass)
@@ -1846,8 +1941,16 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *asked, jd_frame_stat
             pass_diffusion(r, &f);
             lap(r, stats, JD_PASS_DIFFUSION, &t);
         }
-        /* The half-resolution sum is in screen space. */
-        if (!r->vertex_diffusion && !view_still) pass_wide(r, &f);
+        /* The levels' sum is in screen space, at a resolution that keeps
+         * two samples per level texel across (their finest Gaussian is a
+         * texel wide): 1/2 to 1/4 of the picture's. */
+        if (!r->vertex_diffusion && !view_still) {
+            float level_px = 2.0f / (float)r->d.diffusion_size * f.px_per_world;
+            r->wide_div = level_px >= 8.0f ? 4 : level_px >= 6.0f ? 3 : 2;
+            r->wide.w = (r->iw + r->wide_div - 1) / r->wide_div;
+            r->wide.h = (r->ih + r->wide_div - 1) / r->wide_div;
+            pass_wide(r, &f);
+        }
     }
     if (s->mode == JD_MODE_SINGLE || s->mode == JD_MODE_DUAL) {
         update_tail(r, s, &f);
@@ -1867,7 +1970,7 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *asked, jd_frame_stat
     }
     gpu_begin(r, stats, JD_PASS_MAIN);
     pass_main(r, s, &f);
-    if (r->post_aa) pass_antialias(r, s, &f);
+    if (r->post_aa || r->iw != r->d.width || r->ih != r->d.height) pass_antialias(r, s, &f);
     lap(r, stats, JD_PASS_MAIN, &t);
     gpu_collect(r, stats);
     if (stats) {

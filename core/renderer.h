@@ -56,6 +56,12 @@ typedef struct jd_renderer_desc {
      * GL_EXT_disjoint_timer_query, timed frames also get GPU pass times. */
     void *(*get_proc)(const char *name);
     jd_probe program_probe; /* [AUTO] (OFF: compile-only runs on drivers that cannot read back) */
+    /* The picture's passes drawn at this share of width x height and
+     * enlarged to it by one bilinear pass (0.25..1). [0: the device's tier:
+     * 1, or where a board cannot shade the full resolution in a frame
+     * (Mali-400/450, VideoCore IV) at 960 rows and more, less; the line
+     * jd_renderer_info.tier says which] */
+    float render_scale;
 } jd_renderer_desc;
 
 /* What a frame shows. jd_scene_defaults fills a sensible one. */
@@ -167,6 +173,8 @@ typedef struct jd_renderer_info {
     int gpu_timer;            /* GL_EXT_disjoint_timer_query: per-pass GPU times with timing on */
     int target_samples;       /* samples per pixel of the target (GL_SAMPLES) */
     int post_antialias;       /* the anti-aliasing pass runs after each frame */
+    int render_width, render_height; /* the picture's passes' size (render_scale) */
+    const char *tier;         /* NULL, or one line: the resolution this device's tier draws at, and why */
     const jd_mesh *proxy;     /* the coarse mesh the light-space passes draw */
     /* What a frame asking for each mode draws: the mode itself, or where
      * this device's compiler rejected a program or its driver draws

@@ -3,27 +3,50 @@
 
 // Schlick's transmittance Ft over its hemispherical mean c = (1 - F0) 20/21:
 // the reference's Fresnel factor for light entering or leaving.
-float jd_fresnel_tc(float cosv, float f0)
+float jd_fresnel_tc(float cosv, float f0_cancels)
 {
+    // 1 - F = (1 - F0)(1 - x^5): over its mean (1 - F0) 20/21, F0 cancels
+    // (a division fewer per call on every GPU).
     float x = 1.0 - clamp(cosv, 0.0, 1.0);
     float x2 = x * x;
-    return (1.0 - (f0 + (1.0 - f0) * x2 * x2 * x)) / ((1.0 - f0) * (20.0 / 21.0));
+    return 1.05 - 1.05 * (x2 * x2 * x);
 }
 
 // Percentage-closer filtering: the four nearest texels of the light depth
 // compared with the point l (light-map xy, depth), the answers (not the
 // depths) mixed bilinearly. size: texels per side and their inverse.
+#if JD_PACK_HIGHP
+#define JD_PCF_EXACT 1
+#elif defined(JD_SPREAD)
+#if JD_SPREAD
+#define JD_PCF_EXACT 1
+#endif
+#endif
 float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
 {
     vec2 tc = l.xy * size.x - 0.5;
     vec2 f = fract(tc);
     vec2 b = (floor(tc) + 0.5) * size.y;
     float d = size.y;
+    // Under the two-byte packing each depth is read as high byte + low
+    // byte / 255, without jd_unpack's exact recovery of the bytes (8 of
+    // lima's instruction words fewer): a texture unit's error of 1e-5 is
+    // nothing beside the shadow test's bias, and fp16 holds no more. Dual's
+    // shading keeps jd_unpack (its other order spilled on lima).
+#ifdef JD_PCF_EXACT
     float s00 = step(l.z, jd_unpack(texture2D(depth, b)));
     float s10 = step(l.z, jd_unpack(texture2D(depth, b + vec2(d, 0.0))));
     float s01 = step(l.z, jd_unpack(texture2D(depth, b + vec2(0.0, d))));
     float s11 = step(l.z, jd_unpack(texture2D(depth, b + vec2(d, d))));
     return mix(mix(s00, s10, f.x), mix(s01, s11, f.x), f.y);
+#else
+    const vec2 k = vec2(1.0, 1.0 / 255.0);
+    float s00 = step(l.z, dot(texture2D(depth, b).xy, k));
+    float s10 = step(l.z, dot(texture2D(depth, b + vec2(d, 0.0)).xy, k));
+    float s01 = step(l.z, dot(texture2D(depth, b + vec2(0.0, d)).xy, k));
+    float s11 = step(l.z, dot(texture2D(depth, b + vec2(d, d)).xy, k));
+    return mix(mix(s00, s10, f.x), mix(s01, s11, f.x), f.y);
+#endif
 }
 
 // One part of one level's light at a point of light depth zo: S convolved

@@ -6,8 +6,9 @@
 #   tools/frame-cost.sh [JADE] [--check EXPECTED | --update EXPECTED]
 #
 # Each row: board, scene, size, the estimated frame (ms) and its vertex and
-# pixel parts, the fragments of the passes drawn at the picture's size (the
-# "main" ones) and the instructions per such fragment. With --check, a
+# pixel parts, the shading pass's size (smaller where the board's tier
+# draws smaller), fragments and cost per fragment in the compiler's unit,
+# and the fragments of the passes at the picture's resolution ("main..."). With --check, a
 # frame more than 10% slower than the committed table (or a row that is
 # gone) fails; a faster one is said, so the table can be brought down with
 # --update. Estimates, not measurements: docs/performance.md says what the
@@ -39,18 +40,21 @@ for b in $boards; do
                 echo "frame-cost: 0 passed, 1 failed" >&2
                 exit 1
             fi
+            # The shading pass ("main", or "shade-scaled" where the tier
+            # draws smaller) and the passes at the picture's resolution.
             tr ',' '\n' < "$tmp/json" | awk -v b="$b" -v sc="$scene" -v sz="$size" '
+                function val() { split($0, a, ": "); gsub(/"/, "", a[2]); return a[2] }
                 /"estimate"/ { est = 1 }
-                est && /"frame_ms"/ { split($0, a, ": "); frame = a[2] }
-                est && /"vertex_ms"/ { split($0, a, ": "); vert = a[2] }
-                est && /"fragment_ms"/ { split($0, a, ": "); frag = a[2] }
-                est && /"pass": "main/ { main = 1 }
-                est && main && /"fragments"/ { split($0, a, ": "); mf += a[2] }
-                est && main && /"fs_cost"/ { split($0, a, ": "); cost += a[2] * lastf }
-                est && /"fragments"/ { split($0, a, ": "); lastf = a[2] }
-                est && /"ms"/ && !/frame_ms|vertex_ms|fragment_ms/ { main = 0 }
-                END { printf "%-12s %-8s %-10s frame_ms %8.2f vertex_ms %7.2f pixel_ms %8.2f main_fragments %8d per_fragment %6.1f\n",
-                             b, sc, sz, frame, vert, frag, mf, mf ? cost / mf : 0 }'
+                !est { next }
+                /"frame_ms"/ { frame = val() }
+                /"vertex_ms"/ { vert = val() }
+                /"fragment_ms"/ { frag = val() }
+                /"pass": / { name = val(); sub(/^ *\{/, "", name) }
+                /"size": / { size = val() }
+                /"fragments": / { f = val(); if (name ~ /^main/) full += f; if (name == "main" || name == "shade-scaled") { sf = f; ss = size } }
+                /"fs_cost": / { if (name == "main" || name == "shade-scaled") cost = val() }
+                END { printf "%-12s %-8s %-10s frame_ms %8.2f vertex_ms %7.2f pixel_ms %8.2f shade %-9s fragments %7d cost %6.1f full_res_fragments %8d\n",
+                             b, sc, sz, frame, vert, frag, ss, sf, cost, full }'
         done
     done
 done > "$table"

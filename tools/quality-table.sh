@@ -10,11 +10,18 @@
 # Writes OUT_DIR/table.md (the metrics of `jade metric`, each mode against
 # the reference over the object's pixels) and a contact sheet per material
 # and light: reference | none | single | dual | full.
+#
+# RENDER="--profile mali400 --antialias off" renders the modes with those
+# options too (a board's profile, its quality tier); MODES="full" only
+# those modes (no verdicts or sheets then); KEEP=1 reuses references
+# already in OUT_DIR (the same scene at the same size).
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${BUILD:-$root/build}
 out=${1:-$build/quality}
 size=${SIZE:-512x512}
+modes=${MODES:-none single dual full}
+render_opts=${RENDER:-}
 jade=$build/jade
 bunny=$build/testdata/bunny.drc
 [ -x "$jade" ] || { echo "quality-table: $jade is not built (run tools/quickstart.sh or cmake --build build)" >&2; exit 1; }
@@ -38,12 +45,14 @@ for mat in $materials; do
         scene="--mesh $bunny --size $size --material $mat --light-azimuth $az --light-elevation $el"
         base=$out/${mat}_$name
         echo "== $mat, $name-lit" >&2
-        # shellcheck disable=SC2086
-        "$jade" reference $scene --out "$base.reference.png" --pfm "$base.reference.pfm" --mask "$base.mask.png" --quiet >&2
-        rmse_of=""
-        for mode in none single dual full; do
+        if [ "${KEEP:-0}" != 1 ] || [ ! -f "$base.reference.png" ] || [ ! -f "$base.mask.png" ]; then
             # shellcheck disable=SC2086
-            "$jade" render $scene --mode $mode --out "$base.$mode.png" >/dev/null
+            "$jade" reference $scene --out "$base.reference.png" --pfm "$base.reference.pfm" --mask "$base.mask.png" --quiet >&2
+        fi
+        rmse_of=""
+        for mode in $modes; do
+            # shellcheck disable=SC2086
+            "$jade" render $scene $render_opts --mode $mode --out "$base.$mode.png" >/dev/null
             m=$("$jade" metric "$base.$mode.png" "$base.reference.png" --mask "$base.mask.png")
             echo "$m" > "$base.$mode.json"
             rmse=$(echo "$m" | field rmse); psnr=$(echo "$m" | field psnr_db); ssim=$(echo "$m" | field ssim)
@@ -52,8 +61,9 @@ for mat in $materials; do
                 "$mat" "$name" "$mode" "$rmse" "$psnr" "$ssim" "$k" "$rk" "$sk" >> "$table.tmp"
             rmse_of="$rmse_of $rmse:$rk:$ssim"
         done
+        [ "$modes" = "none single dual full" ] || continue
         # shellcheck disable=SC2086
-        "$jade" render $scene --sheet "$out/sheet_${mat}_$name.png" --sheet-reference "$base.reference.png" >/dev/null
+        "$jade" render $scene $render_opts --sheet "$out/sheet_${mat}_$name.png" --sheet-reference "$base.reference.png" >/dev/null
         # The paper's claims, per case: single closer than none, dual closer
         # than single; and jade's: full closer than dual and than none, its
         # structure (SSIM) closer than dual's.
