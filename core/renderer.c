@@ -58,7 +58,7 @@ typedef struct shade_prog {
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */
 typedef struct diff_prog {
     GLuint id;
-    GLint src, ref, ref_scale, step, taps, w, uv_scale, near;
+    GLint src, ref, ref_scale, step, taps, w, uv_scale, near, box;
 } diff_prog;
 
 #define TAIL_SIZE 256
@@ -425,8 +425,9 @@ static void shade_locations(shade_prog *p)
 static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_error *err)
 {
     char def[128];
-    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_TAPS %d\n#define JD_FIRST %d\n", r->highp, DIFF_TAPS,
-             first);
+    /* The first step gathers light-map texels in squares (JD_BOX). */
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_TAPS %d\n#define JD_FIRST %d\n#define JD_BOX %d\n",
+             r->highp, DIFF_TAPS, first, first);
     jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/diffuse_blur.frag", def, quad_attribs, &p->id, err);
     if (res) return res;
     p->src = glGetUniformLocation(p->id, "u_src");
@@ -437,6 +438,7 @@ static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_err
     p->w = glGetUniformLocation(p->id, "u_w");
     p->uv_scale = glGetUniformLocation(p->id, "u_uv_scale");
     p->near = glGetUniformLocation(p->id, "u_near");
+    p->box = glGetUniformLocation(p->id, "u_box");
     return JD_OK;
 }
 
@@ -450,8 +452,9 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
              "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n",
              r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
              m == JD_MODE_FULL && !r->vertex_diffusion);
-    /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_wide] */
-    int varyings = translucent ? (r->vertex_thickness ? 5 : 6) : 3 + (m == JD_MODE_FULL && r->vertex_diffusion);
+    /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel] [v_wide] */
+    int varyings = translucent ? (r->vertex_thickness ? 5 : 6)
+                               : 3 + (m == JD_MODE_FULL) + (m == JD_MODE_FULL && r->vertex_diffusion);
     jd_result res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
                           &r->shade[m].id, err);
     if (res == JD_OK) shade_locations(&r->shade[m]);
@@ -1553,6 +1556,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     glUniformMatrix4fv(p->light_mvp, 1, GL_FALSE, f->light_mvp.m);
     glUniform4fv(p->light_map, 1, f->light_map);
     glUniform2fv(p->shadow_bias, 1, f->shadow_bias);
+    if (p->f0 >= 0) glUniform1f(p->f0, f->f0);
     if (p->depth >= 0) glUniform1i(p->depth, 0);
     if (p->depth_v >= 0) glUniform1i(p->depth_v, 0);
     glActiveTexture(GL_TEXTURE0);
@@ -1590,7 +1594,6 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         glUniform1f(p->inv_eta, f->inv_eta);
         glUniform1f(p->inset, f->inset);
         glUniform3fv(p->a0_scale, 1, f->a0_scale);
-        glUniform1f(p->f0, f->f0);
         glUniform1i(p->tail >= 0 ? p->tail : p->tail_v, 3);
         glActiveTexture(GL_TEXTURE3);
         glBindTexture(GL_TEXTURE_2D, r->tail_tex);
@@ -1681,12 +1684,43 @@ static void pass_spread(jd_renderer *r, const frame_params *f)
     blur(r, r->comb_step, r->comb_inv, &r->spread_tmp, &r->spread2, 0, 1, step, inv2s2, "spread-a2v");
 }
 
+/* One step of the full mode's light-space diffusion: from `from` into `to`
+ * with program p, taps `step` (uv) apart, 2 taps + 1 of them with the
+ * Gaussian weights of sigma st taps (box: a square of `box` texels a side,
+ * equal weights). */
+static void diffuse_step(jd_renderer *r, const diff_prog *p, const target *from, const target *to, float sx, float sy,
+                         int taps, float st, int box, float near, const char *what)
+{
+    glUseProgram(p->id);
+    glUniform1i(p->src, 0);
+    glUniform1i(p->ref, 1);
+    glUniform2f(p->ref_scale, 1.0f / (float)to->w, 1.0f / (float)to->h);
+    glUniform2f(p->uv_scale, (float)from->w / from->tw, (float)from->h / from->th);
+    glUniform2f(p->step, sx, sy);
+    if (box) { /* two taps a trip */
+        glUniform1i(p->taps, box > 1 ? box * box / 2 : 1);
+        glUniform1f(p->box, (float)box);
+    } else {
+        float w[2 * DIFF_TAPS + 1];
+        for (int i = 0; i <= 2 * taps; i++) w[i] = expf(-(float)((i - taps) * (i - taps)) / (2.0f * st * st));
+        glUniform1i(p->taps, taps);
+        glUniform1fv(p->w, 2 * taps + 1, w);
+    }
+    glUniform1f(p->near, near);
+    glBindTexture(GL_TEXTURE_2D, from->tex);
+    draw_quad_into(r, to, what, from);
+    counted_read(r, &r->light, 1); /* the reference depths */
+    counted_trips(r, box ? (box > 1 ? box * box / 2 : 1) : 2 * taps + 1);
+}
+
 /* The full mode's light-space levels: level k is level k-1 blurred by the
  * Gaussian whose variance brings it to sigma_k (variances add), so every
- * step is short; level 1 comes from the light-depth map. A horizontal pass
- * into diff_tmp (the destination's width, the source's height), a vertical
- * one into the level's texture. Sigmas are counted in texels of the first
- * level; texture k has 2^(k/2) of those per texel. */
+ * step is short. Level 1 comes from the light-depth map: its texels
+ * gathered in squares of one level texel (a box's variance), then blurred
+ * by the rest of its Gaussian. A horizontal pass into diff_tmp (the
+ * destination's width, the source's height), a vertical one into the
+ * level's texture. Sigmas are counted in texels of the first level;
+ * texture k has 2^(k/2) of those per texel. */
 static void pass_diffusion(jd_renderer *r, const frame_params *f)
 {
     glDisable(GL_DEPTH_TEST);
@@ -1698,53 +1732,41 @@ static void pass_diffusion(jd_renderer *r, const frame_params *f)
     /* Light-depth units per first-level texel: the map spans 2 world units
      * across and 2 in depth, so units of width and depth are alike. */
     float texel = 1.0f / (float)r->d.diffusion_size, map_texel = 1.0f / (float)r->d.light_map_size;
-    float prev = 0.0f;
+    int box = r->d.light_map_size / r->d.diffusion_size;
+    /* The square's variance in level texels (a box of n: (n^2 - 1) / 12 n^2). */
+    float prev = sqrtf((float)(box * box - 1) / (12.0f * (float)(box * box)));
     for (int k = 0; k < r->diff_levels; k++) {
         float sigma = (float)(1 << k);
         float inc = sqrtf(sigma * sigma - prev * prev);
         prev = sigma;
-        const target *src = k == 0 ? &r->light : &r->diff_lv[k - 1];
         target *dst = &r->diff_lv[k], *tmp = &r->diff_tmp;
-        /* First-level texels per source texel. */
-        float per_src = k == 0 ? (float)r->d.diffusion_size / (float)r->d.light_map_size : (float)(1 << ((k - 1) / 2));
-        float sig = inc / per_src; /* in source texels, also tmp's rows */
-        /* The first level reads the light map, sharp in both directions
-         * (its second pass still sharp across): taps half a sigma apart.
-         * Later levels read a level already blurred by sigma_(k-1), at
-         * least 1/sqrt(3) of this step's increment: taps a sigma apart (3
-         * a side, not 6) sample it without a ripple (the Gaussian's alias
-         * at that spacing is exp(-2 pi^2 / 3), 0.1%), at half the cost. */
-        float spacing = k == 0 ? sig * 3.0f / DIFF_TAPS : sig;
-        float step = fmaxf(spacing, 1.0f), st = sig / step;
         /* Light within 1.5 sigma (and two map texels) of a texel's own
          * surface in depth is that surface's; the rest came from elsewhere. */
         float near = 1.5f * sigma * texel + 2.0f * map_texel + f->light_map[3];
+        if (k == 0) /* the squares, into the level itself: the blur reads them from there */
+            diffuse_step(r, &r->diff_first, &r->light, dst, 1.0f / (float)r->light.tw, 1.0f / (float)r->light.th, 0,
+                         0.0f, box, near, "diffusion-1box");
+        const target *src = k == 0 ? dst : &r->diff_lv[k - 1];
+        /* First-level texels per source texel. */
+        float per_src = k == 0 ? 1.0f : (float)(1 << ((k - 1) / 2));
+        float sig = inc / per_src; /* in source texels, also tmp's rows */
+        /* The first level's blur reads the squares, sharp at their texels:
+         * taps half a sigma (at least a texel) apart. Later levels read a
+         * level already blurred by sigma_(k-1), at least 1/sqrt(3) of this
+         * step's increment: taps a sigma apart (3 a side, not 6) sample it
+         * without a ripple (the Gaussian's alias at that spacing is
+         * exp(-2 pi^2 / 3), 0.1%), at half the cost. */
+        float spacing = k == 0 ? sig * 3.0f / DIFF_TAPS : sig;
+        float step = fmaxf(spacing, 1.0f), st = sig / step;
+        /* Taps out to 3 sigma, no more. */
+        int taps = (int)fminf(ceilf(3.0f * st), (float)DIFF_TAPS);
         tmp->w = dst->w;
         tmp->h = src->h;
-        for (int pass = 0; pass < 2; pass++) {
-            const diff_prog *p = k == 0 && pass == 0 ? &r->diff_first : &r->diff_next;
-            const target *from = pass ? tmp : src, *to = pass ? dst : tmp;
-            glUseProgram(p->id);
-            glUniform1i(p->src, 0);
-            glUniform1i(p->ref, 1);
-            glUniform2f(p->ref_scale, 1.0f / (float)to->w, 1.0f / (float)to->h);
-            glUniform2f(p->uv_scale, (float)from->w / from->tw, (float)from->h / from->th);
-            glUniform2f(p->step, pass ? 0.0f : step / (float)from->tw, pass ? step / (float)from->th : 0.0f);
-            /* Taps out to 3 sigma, no more: the narrow first levels
-             * read a third of the texels of the widest. */
-            int taps = (int)fminf(ceilf(3.0f * st), (float)DIFF_TAPS);
-            float w[2 * DIFF_TAPS + 1];
-            for (int i = 0; i <= 2 * taps; i++) w[i] = expf(-(float)((i - taps) * (i - taps)) / (2.0f * st * st));
-            glUniform1i(p->taps, taps);
-            glUniform1fv(p->w, 2 * taps + 1, w);
-            glUniform1f(p->near, near);
-            glBindTexture(GL_TEXTURE_2D, from->tex);
-            char what[24];
-            snprintf(what, sizeof what, "diffusion-%d%c", k + 1, pass ? 'v' : 'h');
-            draw_quad_into(r, to, what, from);
-            counted_read(r, &r->light, 1); /* the reference depths */
-            counted_trips(r, 2 * taps + 1);
-        }
+        char what[24];
+        snprintf(what, sizeof what, "diffusion-%dh", k + 1);
+        diffuse_step(r, &r->diff_next, src, tmp, step / (float)src->tw, 0.0f, taps, st, 0, near, what);
+        snprintf(what, sizeof what, "diffusion-%dv", k + 1);
+        diffuse_step(r, &r->diff_next, tmp, dst, 0.0f, step / (float)tmp->th, taps, st, 0, near, what);
     }
 }
 

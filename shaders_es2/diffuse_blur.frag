@@ -20,6 +20,9 @@ uniform vec2 u_step;        // texel offset between taps, along the blur directi
 uniform int u_taps;         // taps on each side of the centre for this level, 1..JD_TAPS
 uniform float u_w[2 * JD_TAPS + 1]; // the Gaussian's weights, tap 0 (-u_taps) to 2 u_taps
 uniform float u_near;       // light-depth units that still count as this texel's surface
+#if JD_BOX
+uniform float u_box;        // light-map texels a side of the square one output texel gathers
+#endif
 varying vec2 v_uv;
 
 // sqrt(S) and the mean depth of a part; `other`, the depth to give it where
@@ -72,11 +75,26 @@ void main()
     // instructions); one tap per pass round the loop, 0 spills and 69.
 #ifdef JD_UNROLL
     for (int i = 0; i < JD_UNROLL; i++) { // the device-compiler tool: the cost of one trip more
+#elif JD_BOX
+    for (int i = 0; i <= 64; i++) {
+        if (i >= u_taps) break;
 #else
     for (int i = 0; i <= 64; i++) {
         if (i > 2 * u_taps) break;
 #endif
+#if JD_BOX
+        // The first level's first step: every light-map texel under this
+        // output texel (u_box a side, a power of two) with the same weight,
+        // at a quarter of the fragments a first pass along one axis writes;
+        // two a trip, u_taps trips (a side of 1: one tap, the second
+        // weighs 0). One a trip, the loop's own words came 16 times.
+        float fi = float(2 * i);
+        vec2 o = vec2(mod(fi, u_box), floor(fi / u_box)) - 0.5 * (u_box - 1.0);
+        tap(v_uv + o * u_step, 1.0, zr, near, far, wsum);
+        tap(v_uv + (o + vec2(1.0, 0.0)) * u_step, step(1.5, u_box), zr, near, far, wsum);
+#else
         tap(v_uv + (float(i) - float(u_taps)) * u_step, u_w[i], zr, near, far, wsum);
+#endif
     }
     vec4 acc = vec4(near, far);
     if (wsum <= 0.0) {

@@ -17,6 +17,16 @@ varying vec3 v_normal;
 // depth: moving it sideways would move the edges of cast shadows.
 // w: the surface's own light depth.
 varying vec4 v_shadow;
+#if JD_FULL && !JD_WIDE_ONLY
+// full's two Fresnel factors per vertex (the fragment stage keeps the
+// normal's detail for the highlight and the shadow): the light's
+// transmitted in, times n.l, and the view's out. Meshes are dense beside
+// the pixels the boards shade (the default asset at 960x540: about one
+// vertex a fragment), and both factors are smooth.
+uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
+uniform float u_f0;
+varying vec2 v_fresnel;
+#endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
 // Where the vertex stage can read textures, the full mode's light-space
 // levels (smooth by construction: their finest Gaussian is a level texel
@@ -64,6 +74,13 @@ void main()
     // The light looks down its +z: a normal facing it has a negative z there.
     float cl = clamp(abs((u_light_mvp * vec4(normalize(a_normal), 0.0)).z), 0.2, 1.0);
     v_shadow.z -= u_shadow_bias.y + u_shadow_bias.x * (1.0 + sqrt(1.0 - cl * cl) / cl);
+#if JD_FULL && !JD_WIDE_ONLY
+    vec3 nf = normalize(a_normal);
+    vec3 vf = normalize(u_eye - a_position);
+    if (dot(nf, vf) < 0.0) nf = -nf;
+    float ndl_v = max(dot(nf, u_light_dir), 0.0);
+    v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_f0), jd_fresnel_tc(dot(nf, vf), u_f0));
+#endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
     vec3 nv = normalize(a_normal);
     if (dot(nv, u_eye - a_position) < 0.0) nv = -nv;

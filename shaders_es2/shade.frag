@@ -35,6 +35,9 @@ uniform vec3 u_w0;
 #endif
 #if JD_FULL
 uniform vec3 u_wl;           // Rd's weight on the Gaussians finer than a level texel
+#if !JD_WIDE_ONLY
+varying vec2 v_fresnel;      // n.l Ft(l)/c and Ft(v)/c, per vertex (mesh.vert)
+#endif
 #if JD_VERTEX_DIFFUSION
 varying vec3 v_wide;         // the levels' light, per vertex (jd_diffused)
 #elif JD_WIDE_BUFFER
@@ -113,10 +116,10 @@ void main()
 #if JD_WIDE_ONLY
     gl_FragColor = vec4(sqrt(clamp(0.5 * wide, 0.0, 1.0)), 1.0);
     return;
+#else
+    vec3 mo = u_albedo * u_shading.x + u_light_color * (u_wl * (v_fresnel.x * vis) + wide);
+    vec3 col = v_fresnel.y * mo + u_shading.y * spec * u_light_color;
 #endif
-    vec3 mo = u_albedo * u_shading.x
-            + u_light_color * (u_wl * (ndl * jd_fresnel_tc(ndl, u_light_map.z) * vis) + wide);
-    vec3 col = jd_fresnel_tc(dot(n, v), u_light_map.z) * mo + u_shading.y * spec * u_light_color;
 #else
     vec3 col = u_albedo * (u_shading.x + ndl * vis * u_light_color) + u_shading.y * spec * u_light_color;
 #endif
@@ -134,10 +137,12 @@ void main()
     // transmittance there is near zero anyway, per fragment.
     col += a0 * smoothstep(0.0, 0.25, dot(n, v));
 #endif
+#if !JD_WIDE_ONLY
     col *= u_shading.w;
     // Reinhard-style shoulder, then display gamma 2.0 (a sqrt is cheaper than
     // pow on every GPU jade targets).
     col = col / (1.0 + 0.15 * col);
     gl_FragColor = vec4(sqrt(clamp(col, 0.0, 1.0)), 1.0);
+#endif
 #endif
 }
