@@ -1,0 +1,130 @@
+/* The light's passes: the light-depth map every mode shadows with, and
+ * full's diffusion of the light that entered, level by level in light space. */
+#include "renderer_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* The full mode's sum of Gaussians: the finest below a level texel (applied
+ * at the shaded point), then one per light-space level. Refitted only when
+ * the material or the scale changes. */
+void jdr_update_fit(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    float key[9] = {s->sigma_s[0], s->sigma_s[1], s->sigma_s[2], s->sigma_a[0], s->sigma_a[1],
+                    s->sigma_a[2], s->eta, s->density, f->mm_per_world};
+    if (!memcmp(key, r->fit_key, sizeof key)) return;
+    memcpy(r->fit_key, key, sizeof key);
+    float texel_mm = 2.0f * f->mm_per_world / (float)r->d.diffusion_size;
+    float sigma[DIFF_LOCAL + DIFF_LEVELS] = {texel_mm / 16.0f, texel_mm / 5.0f, texel_mm / 2.0f};
+    for (int k = 0; k < DIFF_LEVELS; k++) sigma[DIFF_LOCAL + k] = texel_mm * (float)(1 << k);
+    jd_diffusion_fit_profile(&f->dipole, sigma, DIFF_LOCAL + DIFF_LEVELS, &r->fit);
+    r->diff_levels = 0;
+    for (int k = 0; k < DIFF_LEVELS; k++)
+        for (int c = 0; c < 3; c++)
+            if (r->fit.weight[DIFF_LOCAL + k][c] > 1e-5f) r->diff_levels = k + 1;
+}
+
+void jdr_pass_light_depth(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    (void)s;
+    jdr_use_target(r, &r->light, "light-depth");
+    glClearColor(1, 0, 0, 0); /* packed 1.0: nothing in front; no light */
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    /* Only surfaces facing the light can be the nearest to it. */
+    if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
+    glUseProgram(r->depth_prog);
+    glUniformMatrix4fv(r->depth_mvp, 1, GL_FALSE, f->light_mvp.m);
+    glUniform3f(r->depth_light_dir, f->light_dir.x, f->light_dir.y, f->light_dir.z);
+    glUniform1f(r->depth_f0, f->f0);
+    jdr_bind_mesh(r->proxy_vbo, r->proxy_ibo);
+    jdr_draw_elements(r, 1, &f->light_mvp, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0, -1);
+}
+
+/* One step of the full mode's light-space diffusion: from `from` into `to`
+ * with program p, taps `step` (uv) apart, 2 taps + 1 of them with the
+ * Gaussian weights of sigma st taps (box: a square of `box` texels a side,
+ * equal weights). */
+static void diffuse_step(jd_renderer *r, const diff_prog *p, const target *from, const target *to, float sx, float sy,
+                         int taps, float st, int box, float near, const char *what)
+{
+    glUseProgram(p->id);
+    glUniform1i(p->src, 0);
+    glUniform1i(p->ref, 1);
+    glUniform2f(p->ref_scale, 1.0f / (float)to->w, 1.0f / (float)to->h);
+    glUniform2f(p->uv_scale, (float)from->w / from->tw, (float)from->h / from->th);
+    glUniform2f(p->step, sx, sy);
+    if (box) { /* two taps a trip */
+        glUniform1i(p->taps, box > 1 ? box * box / 2 : 1);
+        glUniform1f(p->box, (float)box);
+    } else {
+        float w[2 * DIFF_TAPS + 1];
+        for (int i = 0; i <= 2 * taps; i++) w[i] = expf(-(float)((i - taps) * (i - taps)) / (2.0f * st * st));
+        glUniform1i(p->taps, taps);
+        glUniform1fv(p->w, 2 * taps + 1, w);
+    }
+    glUniform1f(p->near, near);
+    glBindTexture(GL_TEXTURE_2D, from->tex);
+    jdr_draw_quad_into(r, to, what, from);
+    jdr_counted_read(r, &r->light, 1); /* the reference depths */
+    jdr_counted_trips(r, box ? (box > 1 ? box * box / 2 : 1) : 2 * taps + 1);
+}
+
+/* The full mode's light-space levels: level k is level k-1 blurred by the
+ * Gaussian whose variance brings it to sigma_k (variances add), so every
+ * step is short. Level 1 comes from the light-depth map: its texels
+ * gathered in squares of one level texel (a box's variance), then blurred
+ * by the rest of its Gaussian. A horizontal pass into diff_tmp (the
+ * destination's width, the source's height), a vertical one into the
+ * level's texture. Sigmas are counted in texels of the first level;
+ * texture k has 2^(k/2) of those per texel. */
+void jdr_pass_diffusion(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    (void)s;
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    jdr_bind_quad(r);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, r->light.tex);
+    glActiveTexture(GL_TEXTURE0);
+    /* Light-depth units per first-level texel: the map spans 2 world units
+     * across and 2 in depth, so units of width and depth are alike. */
+    float texel = 1.0f / (float)r->d.diffusion_size, map_texel = 1.0f / (float)r->d.light_map_size;
+    int box = r->d.light_map_size / r->d.diffusion_size;
+    /* The square's variance in level texels (a box of n: (n^2 - 1) / 12 n^2). */
+    float prev = sqrtf((float)(box * box - 1) / (12.0f * (float)(box * box)));
+    for (int k = 0; k < r->diff_levels; k++) {
+        float sigma = (float)(1 << k);
+        float inc = sqrtf(sigma * sigma - prev * prev);
+        prev = sigma;
+        target *dst = &r->diff_lv[k], *tmp = &r->diff_tmp;
+        /* Light within 1.5 sigma (and two map texels) of a texel's own
+         * surface in depth is that surface's; the rest came from elsewhere. */
+        float near = 1.5f * sigma * texel + 2.0f * map_texel + f->light_map[3];
+        if (k == 0) /* the squares, into the level itself: the blur reads them from there */
+            diffuse_step(r, &r->diff_first, &r->light, dst, 1.0f / (float)r->light.tw, 1.0f / (float)r->light.th, 0,
+                         0.0f, box, near, "diffusion-1box");
+        const target *src = k == 0 ? dst : &r->diff_lv[k - 1];
+        /* First-level texels per source texel. */
+        float per_src = k == 0 ? 1.0f : (float)(1 << ((k - 1) / 2));
+        float sig = inc / per_src; /* in source texels, also tmp's rows */
+        /* The first level's blur reads the squares, sharp at their texels:
+         * taps half a sigma (at least a texel) apart. Later levels read a
+         * level already blurred by sigma_(k-1), at least 1/sqrt(3) of this
+         * step's increment: taps a sigma apart (3 a side, not 6) sample it
+         * without a ripple (the Gaussian's alias at that spacing is
+         * exp(-2 pi^2 / 3), 0.1%), at half the cost. */
+        float spacing = k == 0 ? sig * 3.0f / DIFF_TAPS : sig;
+        float step = fmaxf(spacing, 1.0f), st = sig / step;
+        /* Taps out to 3 sigma, no more. */
+        int taps = (int)fminf(ceilf(3.0f * st), (float)DIFF_TAPS);
+        tmp->w = dst->w;
+        tmp->h = src->h;
+        char what[24];
+        snprintf(what, sizeof what, "diffusion-%dh", k + 1);
+        diffuse_step(r, &r->diff_next, src, tmp, step / (float)src->tw, 0.0f, taps, st, 0, near, what);
+        snprintf(what, sizeof what, "diffusion-%dv", k + 1);
+        diffuse_step(r, &r->diff_next, tmp, dst, 0.0f, step / (float)tmp->th, taps, st, 0, near, what);
+    }
+}

@@ -1,0 +1,265 @@
+/* The picture's passes: the shading, its low-resolution layers (dual's
+ * spread, full's levels' sum) and the pass after the frame (anti-aliasing,
+ * or enlarging a picture the tier drew smaller). */
+#include "renderer_internal.h"
+
+#include <math.h>
+
+static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const frame_params *f, int w, int h)
+{
+    glUseProgram(p->id);
+    glUniformMatrix4fv(p->mvp, 1, GL_FALSE, f->mvp.m);
+    glUniform3f(p->eye, f->eye.x, f->eye.y, f->eye.z);
+    glUniform3f(p->light_dir, f->light_dir.x, f->light_dir.y, f->light_dir.z);
+    glUniform3fv(p->albedo, 1, f->albedo);
+    glUniform3fv(p->light_color, 1, f->light_color);
+    glUniform4fv(p->shading, 1, f->shading);
+    glUniformMatrix4fv(p->light_mvp, 1, GL_FALSE, f->light_mvp.m);
+    glUniform4fv(p->light_map, 1, f->light_map);
+    glUniform2fv(p->shadow_bias, 1, f->shadow_bias);
+    if (p->f0 >= 0) glUniform1f(p->f0, f->f0);
+    if (p->depth >= 0) glUniform1i(p->depth, 0);
+    if (p->depth_v >= 0) glUniform1i(p->depth_v, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, r->light.tex);
+    if (p->wl >= 0 || p->lw >= 0) { /* full: the local weight, the levels (either may be compiled out) */
+        float lw[DIFF_LEVELS][3], ls[6] = {0}, wl[3] = {0};
+        const jd_diffusion_fit *fit = &r->fit;
+        for (int c = 0; c < 3; c++)
+            for (int k = 0; k < DIFF_LOCAL; k++) wl[c] += fit->weight[k][c];
+        for (int k = 0; k < DIFF_LEVELS; k++) {
+            for (int c = 0; c < 3; c++) lw[k][c] = k < r->diff_levels ? fit->weight[DIFF_LOCAL + k][c] : 0.0f;
+            /* Light-depth units to the level's sigma * sqrt(2), in millimetres. */
+            ls[k] = 2.0f * f->mm_per_world / (1.41421356f * fit->sigma_mm[DIFF_LOCAL + k]);
+        }
+        ls[5] = (float)r->d.diffusion_size; /* the spare slot: the first level's texels per side */
+        glUniform3fv(p->lw, DIFF_LEVELS, &lw[0][0]);
+        glUniform3fv(p->ls, 2, ls);
+        glUniform3fv(p->wl, 1, wl);
+        glUniform4fv(p->light_map_v, 1, f->light_map);
+        glUniform3f(p->light_dir_v, f->light_dir.x, f->light_dir.y, f->light_dir.z);
+        for (int i = 0; i < DIFF_TEXTURES; i++) {
+            glUniform1i(p->lv[i] >= 0 ? p->lv[i] : p->lv_v[i], 1 + i);
+            glActiveTexture(GL_TEXTURE1 + i);
+            glBindTexture(GL_TEXTURE_2D, r->diff_lv[i].tex);
+        }
+        glActiveTexture(GL_TEXTURE0);
+    }
+    if (p->irr >= 0) {
+        float hb = r->box_half;
+        glUniform1i(p->irr, 2);
+        glActiveTexture(GL_TEXTURE2);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, r->irr[0].tex);
+        glUniform3f(p->box_min, -hb, -hb, -hb);
+        glUniform3f(p->box_max, hb, hb, hb);
+        glUniform1f(p->inv_eta, f->inv_eta);
+        glUniform1f(p->inset, f->inset);
+        glUniform3fv(p->a0_scale, 1, f->a0_scale);
+        glUniform1i(p->tail >= 0 ? p->tail : p->tail_v, 3);
+        glActiveTexture(GL_TEXTURE3);
+        glBindTexture(GL_TEXTURE_2D, r->tail_tex);
+        glActiveTexture(GL_TEXTURE0);
+    }
+    if (p->wide >= 0) {
+        glUniform1i(p->wide, 6);
+        glUniform2f(p->inv_viewport, (float)r->wide.w / r->wide.tw / (float)w, (float)r->wide.h / r->wide.th / (float)h);
+        glActiveTexture(GL_TEXTURE6);
+        glBindTexture(GL_TEXTURE_2D, r->wide.tex);
+        glActiveTexture(GL_TEXTURE0);
+    }
+    if (p->spread >= 0) {
+        glUniform1i(p->spread, 1);
+        /* Screen position to the used corner of the spread texture. */
+        glUniform2f(p->inv_viewport, (float)r->spread2.w / r->spread2.tw / (float)w,
+                    (float)r->spread2.h / r->spread2.th / (float)h);
+        glUniform3fv(p->w0, 1, f->w0);
+        glActiveTexture(GL_TEXTURE1);
+        glBindTexture(GL_TEXTURE_2D, r->spread2.tex);
+        glActiveTexture(GL_TEXTURE0);
+    }
+}
+
+static void blur(jd_renderer *r, GLint step_loc, GLint inv_loc, const target *src, const target *dst, float dx,
+                 float dy, float step, float inv2s2, const char *what)
+{
+    glBindTexture(GL_TEXTURE_2D, src->tex);
+    glUniform2f(step_loc, dx * step / (float)src->tw, dy * step / (float)src->th);
+    glUniform1f(inv_loc, inv2s2);
+    jdr_draw_quad_into(r, dst, what, src);
+}
+
+/* A low-resolution layer drawn with a shading program: cleared to "not
+ * covered" (alpha 0), depth-tested, culled as the main pass; of the whole
+ * mesh (full's levels) or of the coarse capture proxy (the spread's A0). */
+static void draw_layer(jd_renderer *r, const target *t, const shade_prog *p, const frame_params *f, int whole_mesh,
+                       const char *what)
+{
+    jdr_use_target(r, t, what);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
+    set_shade_uniforms(r, p, f, t->w, t->h);
+    jdr_counted_read(r, &r->light, 1);
+    if (whole_mesh) {
+        for (int i = 0; i < r->diff_levels; i++) jdr_counted_read(r, &r->diff_lv[i], 1);
+        jdr_draw_mesh(r, &f->mvp);
+    } else {
+        jdr_counted_read(r, &r->irr[0], 6);
+        jdr_bind_mesh(r->cap_vbo, r->cap_ibo);
+        jdr_draw_elements(r, 2, &f->mvp, (GLsizei)r->capture_proxy.num_indices, GL_UNSIGNED_SHORT, 0, -1);
+    }
+}
+
+void jdr_pass_spread(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    (void)s;
+    /* A0 at low resolution from the coarse capture proxy: these layers are
+     * blurred, so a finer mesh would buy nothing but vertex work. */
+    draw_layer(r, &r->spread0, &r->a0, f, 0, "spread-a0");
+
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    jdr_bind_quad(r);
+    glUseProgram(r->blur_prog);
+    glUniform1i(r->blur_src, 0);
+    glUniform2f(r->blur_scale, (float)r->spread0.w / r->spread0.tw, (float)r->spread0.h / r->spread0.th);
+    glActiveTexture(GL_TEXTURE0);
+    float sigma = f->blur_sigma_px;
+    float step = sigma * 3.0f / BLUR_TAPS;
+    if (step < 1.0f) step = 1.0f;
+    float st = sigma / step;
+    float inv2s2 = 1.0f / (2.0f * st * st);
+    /* A1 = G * A0; A2 = G * A1, whose last (vertical) pass also combines. */
+    blur(r, r->blur_step, r->blur_inv, &r->spread0, &r->spread_tmp, 1, 0, step, inv2s2, "spread-a1h");
+    blur(r, r->blur_step, r->blur_inv, &r->spread_tmp, &r->spread1, 0, 1, step, inv2s2, "spread-a1v");
+    blur(r, r->blur_step, r->blur_inv, &r->spread1, &r->spread_tmp, 1, 0, step, inv2s2, "spread-a2h");
+    glUseProgram(r->combine_prog);
+    glUniform1i(r->comb_src, 0);
+    glUniform1i(r->comb_a1, 1);
+    glUniform3fv(r->comb_w1, 1, f->w1);
+    glUniform3fv(r->comb_w2, 1, f->w2);
+    glUniform2f(r->comb_scale, (float)r->spread0.w / r->spread0.tw, (float)r->spread0.h / r->spread0.th);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, r->spread1.tex);
+    glActiveTexture(GL_TEXTURE0);
+    blur(r, r->comb_step, r->comb_inv, &r->spread_tmp, &r->spread2, 0, 1, step, inv2s2, "spread-a2v");
+}
+
+/* Without vertex diffusion, full's levels are summed per fragment at a
+ * lower resolution, read once (bilinear) in the main pass: the levels are
+ * smooth (their finest Gaussian is a level texel wide), so two samples per
+ * level texel across the picture will do, 1/2 to 1/4 of its resolution. */
+void jdr_pass_wide(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    (void)s;
+    float level_px = 2.0f / (float)r->d.diffusion_size * f->px_per_world;
+    r->wide_div = level_px >= 8.0f ? 4 : level_px >= 6.0f ? 3 : 2;
+    r->wide.w = (r->iw + r->wide_div - 1) / r->wide_div;
+    r->wide.h = (r->ih + r->wide_div - 1) / r->wide_div;
+    draw_layer(r, &r->wide, &r->wide_prog, f, 1, "wide");
+    jdr_counted_trips(r, 4); /* jd_level_at's texels */
+}
+
+void jdr_pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    /* Into the target, or into `scene` for the pass after: anti-aliasing,
+     * or enlarging a picture drawn smaller. */
+    int via_scene = r->post_aa || r->iw != r->d.width || r->ih != r->d.height;
+    int w = r->iw, h = r->ih;
+    /* "main": at the picture's resolution (the frame-cost model's name). */
+    jdr_count_target(r, w == r->d.width && h == r->d.height ? "main" : "shade-scaled", w, h);
+    glBindFramebuffer(GL_FRAMEBUFFER, via_scene ? r->scene.fbo : r->d.target_fbo);
+    glViewport(0, 0, w, h);
+    /* The pass after reads one texel past the frame's right and top
+     * edges: where the texture is larger than the frame (power-of-two
+     * sizes, a window made smaller), that texel is cleared too, or the
+     * edge column takes whatever the texture held. */
+    if (via_scene)
+        glScissor(0, 0, w < r->scene.tw ? w + 1 : w, h < r->scene.th ? h + 1 : h);
+    else
+        glScissor(0, 0, w, h);
+    float bg[3];
+    for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f)); /* display gamma 2, as the shader */
+    glClearColor(bg[0], bg[1], bg[2], 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glScissor(0, 0, w, h);
+    glEnable(GL_DEPTH_TEST);
+    if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
+    set_shade_uniforms(r, &r->shade[s->mode], f, w, h);
+    jdr_counted_read(r, &r->light, 1);
+    if (s->mode == JD_MODE_FULL && !r->vertex_diffusion) jdr_counted_read(r, &r->wide, 1);
+    if (s->mode == JD_MODE_FULL && r->vertex_diffusion)
+        for (int i = 0; i < r->diff_levels; i++) jdr_counted_read(r, &r->diff_lv[i], 1);
+    if (s->mode == JD_MODE_SINGLE || s->mode == JD_MODE_DUAL) jdr_counted_read(r, &r->irr[0], 6);
+    if (s->mode == JD_MODE_DUAL) jdr_counted_read(r, &r->spread2, 1);
+    jdr_draw_mesh(r, &f->mvp);
+}
+
+/* The frame from `scene` into the platform's target, its edges smoothed.
+ * Only the object's box on screen (its corners projected, two pixels
+ * more) is filtered; the rest is background, cleared. */
+void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    jdr_count_target(r, r->post_aa ? "main-antialias" : "main-upscale", r->d.width, r->d.height);
+    glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
+    glViewport(0, 0, r->d.width, r->d.height);
+    glScissor(0, 0, r->d.width, r->d.height);
+    float bg[3];
+    for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f));
+    glClearColor(bg[0], bg[1], bg[2], 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    /* The object's extent on screen: the proxy's vertices projected, and
+     * as far again as the mesh may lie from its proxy (proxy_error, at the
+     * nearest vertex's depth). The bunny's box corners took 2.6 times the
+     * pixels at 1080p, each one a fragment of this pass. */
+    float x0 = 1, y0 = 1, x1 = -1, y1 = -1, w_min = 1e30f;
+    int inside = 1;
+    double area = (double)r->d.width * r->d.height;
+    const float *m = f->mvp.m;
+    for (uint32_t i = 0; i < r->proxy.num_vertices && inside; i++) {
+        const float *q = r->proxy.positions + 3 * i;
+        jd_vec3 p = jd_v3_scale(jd_v3_sub(jd_v3(q[0], q[1], q[2]), r->place_c), r->place_inv_r);
+        float cx = m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12], cy = m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13];
+        float cw = m[3] * p.x + m[7] * p.y + m[11] * p.z + m[15];
+        if (cw <= 1e-4f) { inside = 0; break; } /* behind the camera: filter everything */
+        x0 = fminf(x0, cx / cw); x1 = fmaxf(x1, cx / cw);
+        y0 = fminf(y0, cy / cw); y1 = fmaxf(y1, cy / cw);
+        w_min = fminf(w_min, cw);
+    }
+    if (inside) { /* world units to NDC at the nearest depth: the transform's scale over w */
+        float sx = sqrtf(m[0] * m[0] + m[4] * m[4] + m[8] * m[8]), sy = sqrtf(m[1] * m[1] + m[5] * m[5] + m[9] * m[9]);
+        float e = r->proxy_error * fmaxf(sx, sy) / w_min;
+        x0 -= e; x1 += e; y0 -= e; y1 += e;
+    }
+    if (inside) {
+        int px0 = (int)floorf((x0 * 0.5f + 0.5f) * r->d.width) - 2, px1 = (int)ceilf((x1 * 0.5f + 0.5f) * r->d.width) + 2;
+        int py0 = (int)floorf((y0 * 0.5f + 0.5f) * r->d.height) - 2, py1 = (int)ceilf((y1 * 0.5f + 0.5f) * r->d.height) + 2;
+        px0 = px0 < 0 ? 0 : px0; py0 = py0 < 0 ? 0 : py0;
+        px1 = px1 > r->d.width ? r->d.width : px1; py1 = py1 > r->d.height ? r->d.height : py1;
+        if (px1 <= px0 || py1 <= py0) return;
+        glScissor(px0, py0, px1 - px0, py1 - py0);
+        area = (double)(px1 - px0) * (py1 - py0);
+    }
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    jdr_bind_quad(r);
+    /* The quad spans the target; its texture coordinates the used part of
+     * `scene`, whatever its size: drawn smaller, it is enlarged here. */
+    if (r->post_aa) {
+        glUseProgram(r->aa_prog);
+        glUniform1i(r->aa_src, 0);
+        glUniform2f(r->aa_texel, 1.0f / (float)r->scene.tw, 1.0f / (float)r->scene.th);
+        glUniform2f(r->aa_scale, (float)r->scene.w / (float)r->scene.tw, (float)r->scene.h / (float)r->scene.th);
+    } else {
+        glUseProgram(r->up_prog);
+        glUniform1i(r->up_src, 0);
+        glUniform2f(r->up_scale, (float)r->scene.w / (float)r->scene.tw, (float)r->scene.h / (float)r->scene.th);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, r->scene.tex);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    jdr_counted_quad(r, area, 4, 2);
+    jd_pass_count *p = jdr_counted(r);
+    if (p) p->bytes_read += area * 4.0 * ((double)r->iw / r->d.width) * ((double)r->ih / r->d.height);
+}

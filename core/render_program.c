@@ -1,0 +1,434 @@
+/* The programs, built at start-up in groups by what needs them; a group
+ * the device cannot run takes away its mode, not the renderer. */
+#include "renderer_internal.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "gl_program.h"
+#include "program_probe.h"
+
+static const char *const mesh_attribs[] = {"a_position", "a_normal", NULL};
+static const char *const quad_attribs[] = {"a_corner", NULL};
+static const char *const project_attribs[] = {"a_corner", "a_poly0", "a_poly1", "a_channel", "a_texel", NULL};
+
+/* The device's (or the profile's) limits hold for every program: uniform
+ * vectors (GLSL ES packing: a matN takes N) and samplers. Checked here so a
+ * desktop with a board's profile fails where the board would. */
+static jd_result check_limits(const jd_gl_caps *c, GLuint prog, const char *vs, const char *fs, jd_error *err)
+{
+    GLint n = 0;
+    glGetProgramiv(prog, GL_ACTIVE_UNIFORMS, &n);
+    int vectors = 0, samplers = 0;
+    for (GLint i = 0; i < n; i++) {
+        char name[64];
+        GLint size = 0;
+        GLenum type = 0;
+        glGetActiveUniform(prog, (GLuint)i, sizeof name, NULL, &size, &type, name);
+        if (type == GL_SAMPLER_2D || type == GL_SAMPLER_CUBE) samplers += size;
+        else vectors += size * (type == GL_FLOAT_MAT4 ? 4 : type == GL_FLOAT_MAT3 ? 3 : type == GL_FLOAT_MAT2 ? 2 : 1);
+    }
+    if (vectors > c->max_vertex_uniform_vectors)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s + %s: %d uniform vectors, over this device's %d", vs, fs, vectors,
+                       c->max_vertex_uniform_vectors);
+    if (samplers > c->max_texture_units)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s + %s: %d samplers, over this device's %d texture units", vs, fs,
+                       samplers, c->max_texture_units);
+    return JD_OK;
+}
+
+/* ES 2.0 cannot be asked how many varying vectors a program uses, so each
+ * build states it (vec2..vec4 and float each take one under the packing
+ * rules for jade's shaders) and it is checked against the device's. */
+static jd_result build(jd_renderer *r, int varyings, const char *vs, const char *fs, const char *defines,
+                       const char *const *attribs, GLuint *out, jd_error *err)
+{
+    if (varyings > r->d.caps->max_varying_vectors)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s + %s: %d varying vectors, over this device's %d", vs, fs, varyings,
+                       r->d.caps->max_varying_vectors);
+    jd_result res = jd_program_build(vs, fs, defines, attribs, out, err);
+    if (res == JD_OK) res = check_limits(r->d.caps, *out, vs, fs, err);
+    if (res == JD_OK) { /* a rebuilt program may take a freed id: the newest label wins */
+        int i = 0;
+        while (i < r->num_labels && r->labels[i].id != *out) i++;
+        if (i < (int)(sizeof r->labels / sizeof r->labels[0])) {
+            r->labels[i].id = *out;
+            jd_program_label(vs, fs, defines, r->labels[i].label, sizeof r->labels[i].label);
+            if (i == r->num_labels) r->num_labels++;
+        }
+    }
+    return res;
+}
+
+static void shade_locations(shade_prog *p)
+{
+    GLuint id = p->id;
+    p->mvp = glGetUniformLocation(id, "u_mvp");
+    p->light_mvp = glGetUniformLocation(id, "u_light_mvp");
+    p->eye = glGetUniformLocation(id, "u_eye");
+    p->irr = glGetUniformLocation(id, "u_irr");
+    p->box_min = glGetUniformLocation(id, "u_box_min");
+    p->box_max = glGetUniformLocation(id, "u_box_max");
+    p->inv_eta = glGetUniformLocation(id, "u_inv_eta");
+    p->inset = glGetUniformLocation(id, "u_inset");
+    p->light_dir = glGetUniformLocation(id, "u_light_dir");
+    p->albedo = glGetUniformLocation(id, "u_albedo");
+    p->light_color = glGetUniformLocation(id, "u_light_color");
+    p->shading = glGetUniformLocation(id, "u_shading");
+    p->depth = glGetUniformLocation(id, "u_depth");
+    p->tail = glGetUniformLocation(id, "u_tail");
+    p->depth_v = glGetUniformLocation(id, "u_depth_v");
+    p->tail_v = glGetUniformLocation(id, "u_tail_v");
+    p->f0 = glGetUniformLocation(id, "u_f0");
+    p->a0_scale = glGetUniformLocation(id, "u_a0_scale");
+    p->spread = glGetUniformLocation(id, "u_spread");
+    p->inv_viewport = glGetUniformLocation(id, "u_inv_viewport");
+    p->w0 = glGetUniformLocation(id, "u_w0");
+    p->light_map = glGetUniformLocation(id, "u_light_map");
+    p->shadow_bias = glGetUniformLocation(id, "u_shadow_bias");
+    for (int i = 0; i < DIFF_TEXTURES; i++) {
+        char name[16];
+        snprintf(name, sizeof name, "u_lv%d", i);
+        p->lv[i] = glGetUniformLocation(id, name);
+        snprintf(name, sizeof name, "u_lv%d_v", i);
+        p->lv_v[i] = glGetUniformLocation(id, name);
+    }
+    p->light_map_v = glGetUniformLocation(id, "u_light_map_v");
+    p->light_dir_v = glGetUniformLocation(id, "u_light_dir_v");
+    p->wide = glGetUniformLocation(id, "u_wide");
+    p->lw = glGetUniformLocation(id, "u_lw");
+    p->ls = glGetUniformLocation(id, "u_ls");
+    p->wl = glGetUniformLocation(id, "u_wl");
+}
+
+static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_error *err)
+{
+    char def[128];
+    /* The first step gathers light-map texels in squares (JD_BOX). */
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_TAPS %d\n#define JD_FIRST %d\n#define JD_BOX %d\n",
+             r->highp, DIFF_TAPS, first, first);
+    jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/diffuse_blur.frag", def, quad_attribs, &p->id, err);
+    if (res) return res;
+    p->src = glGetUniformLocation(p->id, "u_src");
+    p->ref = glGetUniformLocation(p->id, "u_ref");
+    p->ref_scale = glGetUniformLocation(p->id, "u_ref_scale");
+    p->step = glGetUniformLocation(p->id, "u_step");
+    p->taps = glGetUniformLocation(p->id, "u_taps");
+    p->w = glGetUniformLocation(p->id, "u_w");
+    p->uv_scale = glGetUniformLocation(p->id, "u_uv_scale");
+    p->near = glGetUniformLocation(p->id, "u_near");
+    p->box = glGetUniformLocation(p->id, "u_box");
+    return JD_OK;
+}
+
+static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
+{
+    char def[512];
+    int translucent = m == JD_MODE_SINGLE || m == JD_MODE_DUAL;
+    snprintf(def, sizeof def,
+             "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
+             "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
+             "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n",
+             r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
+             m == JD_MODE_FULL && !r->vertex_diffusion);
+    /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel] [v_wide] */
+    int varyings = translucent ? (r->vertex_thickness ? 5 : 6)
+                               : 3 + (m == JD_MODE_FULL) + (m == JD_MODE_FULL && r->vertex_diffusion);
+    jd_result res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
+                          &r->shade[m].id, err);
+    if (res == JD_OK) shade_locations(&r->shade[m]);
+    return res;
+}
+
+/* What every mode needs: the light depth and the plain shading. */
+static jd_result build_base(jd_renderer *r, jd_error *err)
+{
+    char def[64];
+    jd_result res = build_shade(r, JD_MODE_NONE, err);
+    if (res) return res;
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n", r->highp);
+    if ((res = build(r, 2, "shaders_es2/depth.vert", "shaders_es2/depth.frag", def, mesh_attribs, &r->depth_prog, err)))
+        return res;
+    r->depth_mvp = glGetUniformLocation(r->depth_prog, "u_light_mvp");
+    r->depth_light_dir = glGetUniformLocation(r->depth_prog, "u_light_dir");
+    r->depth_f0 = glGetUniformLocation(r->depth_prog, "u_f0");
+    return JD_OK;
+}
+
+/* single (and dual): the capture, its SH reduction, the irradiance map. */
+static jd_result build_sh(jd_renderer *r, jd_error *err)
+{
+    char def[256];
+    int n = r->d.cube_size, nb = n / r->sh_block;
+    jd_result res = build_shade(r, JD_MODE_SINGLE, err);
+    if (res) return res;
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n", r->highp);
+    if ((res = build(r, 2, "shaders_es2/capture.vert", "shaders_es2/capture.frag", def, mesh_attribs, &r->capture_prog, err)))
+        return res;
+    r->cap_mvp = glGetUniformLocation(r->capture_prog, "u_mvp");
+    r->cap_light_mvp = glGetUniformLocation(r->capture_prog, "u_light_mvp");
+    r->cap_light_dir = glGetUniformLocation(r->capture_prog, "u_light_dir");
+    r->cap_bias = glGetUniformLocation(r->capture_prog, "u_bias");
+    r->cap_depth = glGetUniformLocation(r->capture_prog, "u_depth");
+    r->cap_light_color = glGetUniformLocation(r->capture_prog, "u_light_color");
+
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_N %d\n#define JD_B %d\n#define JD_NB %d\n",
+             r->highp, n, r->sh_block, nb);
+    if ((res = build(r, 4, "shaders_es2/sh_project.vert", "shaders_es2/sh_project.frag", def, project_attribs,
+                     &r->project_prog, err)))
+        return res;
+    r->proj_atlas = glGetUniformLocation(r->project_prog, "u_atlas");
+    r->proj_texel = glGetUniformLocation(r->project_prog, "u_atlas_texel");
+    if (r->sh_mid > 1) {
+        snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, r->sh_mid,
+                 r->sh_mid);
+        if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs,
+                         &r->reduce_mid_prog, err)))
+            return res;
+        r->rm_src = glGetUniformLocation(r->reduce_mid_prog, "u_src");
+        r->rm_texel = glGetUniformLocation(r->reduce_mid_prog, "u_src_texel");
+        nb /= r->sh_mid;
+    }
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, nb, nb);
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_faces_prog, err)))
+        return res;
+    r->rf_src = glGetUniformLocation(r->reduce_faces_prog, "u_src");
+    r->rf_texel = glGetUniformLocation(r->reduce_faces_prog, "u_src_texel");
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX 6\n#define JD_RY 1\n", r->highp);
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_final_prog, err)))
+        return res;
+    r->rl_src = glGetUniformLocation(r->reduce_final_prog, "u_src");
+    r->rl_texel = glGetUniformLocation(r->reduce_final_prog, "u_src_texel");
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_SRC_W %d.0\n#define JD_SRC_H %d.0\n", r->highp, pot(1),
+             pot(27));
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/irradiance.frag", def, quad_attribs, &r->irr_prog, err)))
+        return res;
+    r->irr_src = glGetUniformLocation(r->irr_prog, "u_src");
+    r->irr_size = glGetUniformLocation(r->irr_prog, "u_size");
+    r->irr_face = glGetUniformLocation(r->irr_prog, "u_face");
+    return JD_OK;
+}
+
+/* dual: A0 at low resolution and its two blurs. */
+static jd_result build_spread(jd_renderer *r, jd_error *err)
+{
+    char def[512];
+    jd_result res = build_shade(r, JD_MODE_DUAL, err);
+    if (res) return res;
+    snprintf(def, sizeof def,
+             "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n"
+             "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL 0\n#define JD_VERTEX_DIFFUSION 0\n"
+             "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 0\n",
+             r->highp, r->vertex_thickness);
+    if ((res = build(r, r->vertex_thickness ? 5 : 6, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
+                     mesh_attribs, &r->a0.id, err)))
+        return res;
+    shade_locations(&r->a0);
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 0\n", BLUR_TAPS);
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->blur_prog, err))) return res;
+    r->blur_src = glGetUniformLocation(r->blur_prog, "u_src");
+    r->blur_step = glGetUniformLocation(r->blur_prog, "u_step");
+    r->blur_inv = glGetUniformLocation(r->blur_prog, "u_inv_2s2");
+    r->blur_scale = glGetUniformLocation(r->blur_prog, "u_uv_scale");
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_TAPS %d\n#define JD_COMBINE 1\n", BLUR_TAPS);
+    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/blur.frag", def, quad_attribs, &r->combine_prog, err)))
+        return res;
+    r->comb_src = glGetUniformLocation(r->combine_prog, "u_src");
+    r->comb_step = glGetUniformLocation(r->combine_prog, "u_step");
+    r->comb_inv = glGetUniformLocation(r->combine_prog, "u_inv_2s2");
+    r->comb_a1 = glGetUniformLocation(r->combine_prog, "u_a1");
+    r->comb_w1 = glGetUniformLocation(r->combine_prog, "u_w1");
+    r->comb_w2 = glGetUniformLocation(r->combine_prog, "u_w2");
+    r->comb_scale = glGetUniformLocation(r->combine_prog, "u_uv_scale");
+    return JD_OK;
+}
+
+/* full: the light-space diffusion and, without vertex textures, the
+ * half-resolution sum of its levels. */
+static jd_result build_full(jd_renderer *r, jd_error *err)
+{
+    char def[512];
+    jd_result res = build_shade(r, JD_MODE_FULL, err);
+    if (res) return res;
+    if (!r->vertex_diffusion) {
+        snprintf(def, sizeof def,
+                 "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 0\n#define JD_SPREAD 0\n#define JD_A0_ONLY 0\n"
+                 "#define JD_VERTEX_THICKNESS 0\n#define JD_FULL 1\n#define JD_VERTEX_DIFFUSION 0\n"
+                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n",
+                 r->highp);
+        if ((res = build(r, 3, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
+                         err)))
+            return res;
+        shade_locations(&r->wide_prog);
+    }
+    if ((res = build_diffusion(r, 1, &r->diff_first, err))) return res;
+    return build_diffusion(r, 0, &r->diff_next, err);
+}
+
+static jd_result build_antialias(jd_renderer *r, jd_error *err)
+{
+    if (r->may_scale) {
+        jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/upscale.frag", "#define JD_PACK_HIGHP 0\n",
+                              quad_attribs, &r->up_prog, err);
+        if (res) return res;
+        r->up_src = glGetUniformLocation(r->up_prog, "u_src");
+        r->up_scale = glGetUniformLocation(r->up_prog, "u_uv_scale");
+    }
+    if (!r->post_aa) return JD_OK;
+    jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/antialias.frag", "#define JD_PACK_HIGHP 0\n",
+                          quad_attribs, &r->aa_prog, err);
+    if (res) return res;
+    r->aa_src = glGetUniformLocation(r->aa_prog, "u_src");
+    r->aa_texel = glGetUniformLocation(r->aa_prog, "u_texel");
+    r->aa_scale = glGetUniformLocation(r->aa_prog, "u_uv_scale");
+    return JD_OK;
+}
+
+/* The programs by what needs them. A group that does not build, or builds
+ * and then draws nothing, takes away what needs it (a mode, the
+ * anti-aliasing pass), never the renderer; only the base is essential. */
+enum { GROUP_BASE, GROUP_SH, GROUP_SPREAD, GROUP_FULL, GROUP_AA, GROUP_COUNT };
+static const char *const group_what[GROUP_COUNT] = {"the shading every mode needs", "single and dual's SH",
+                                                     "dual's spread", "full's diffusion", "the anti-aliasing pass"};
+static jd_result (*const group_build[GROUP_COUNT])(jd_renderer *, jd_error *) = {
+    build_base, build_sh, build_spread, build_full, build_antialias};
+
+/* A group's program ids (0 where not built); returns how many. */
+static int group_programs(jd_renderer *r, int g, GLuint **out)
+{
+    int n = 0;
+    switch (g) {
+    case GROUP_BASE: out[n++] = &r->shade[JD_MODE_NONE].id; out[n++] = &r->depth_prog; break;
+    case GROUP_SH:
+        out[n++] = &r->shade[JD_MODE_SINGLE].id; out[n++] = &r->capture_prog; out[n++] = &r->project_prog;
+        out[n++] = &r->reduce_mid_prog; out[n++] = &r->reduce_faces_prog; out[n++] = &r->reduce_final_prog;
+        out[n++] = &r->irr_prog;
+        break;
+    case GROUP_SPREAD:
+        out[n++] = &r->shade[JD_MODE_DUAL].id; out[n++] = &r->a0.id; out[n++] = &r->blur_prog; out[n++] = &r->combine_prog;
+        break;
+    case GROUP_FULL:
+        out[n++] = &r->shade[JD_MODE_FULL].id; out[n++] = &r->wide_prog.id; out[n++] = &r->diff_first.id;
+        out[n++] = &r->diff_next.id;
+        break;
+    default: out[n++] = &r->aa_prog; out[n++] = &r->up_prog; break;
+    }
+    return n;
+}
+
+static void drop_group(jd_renderer *r, int g)
+{
+    GLuint *ids[8];
+    int n = group_programs(r, g, ids);
+    for (int i = 0; i < n; i++) {
+        if (*ids[i]) glDeleteProgram(*ids[i]);
+        *ids[i] = 0;
+    }
+}
+
+/* Appends to what start-up says of the fallbacks taken. */
+static void say(jd_renderer *r, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static void say(jd_renderer *r, const char *fmt, ...)
+{
+    size_t n = strlen(r->fallback);
+    if (n + 3 >= sizeof r->fallback) return;
+    if (n) { memcpy(r->fallback + n, "; ", 3); n += 2; }
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->fallback + n, sizeof r->fallback - n, fmt, ap);
+    va_end(ap);
+}
+
+/* Builds every group. A device whose compiler rejects a highp program gets
+ * the mediump packing for all of them (precision auto only); a group
+ * still failing is dropped and said. The probe then drops the groups with
+ * a program that draws nothing. Each mode is shown as itself or as the
+ * nearest cheaper mode whose groups are there: full as dual, dual as
+ * single, single as none. */
+static int build_groups(jd_renderer *r, int *ok, jd_error *gerr)
+{
+    int failed = 0;
+    for (int g = 0; g < GROUP_COUNT; g++) {
+        memset(&gerr[g], 0, sizeof gerr[g]);
+        ok[g] = group_build[g](r, &gerr[g]) == JD_OK;
+        failed += !ok[g];
+    }
+    return failed;
+}
+
+static void drop_groups(jd_renderer *r)
+{
+    for (int g = 0; g < GROUP_COUNT; g++) drop_group(r, g);
+}
+
+jd_result jdr_build_programs(jd_renderer *r, jd_error *err)
+{
+    jd_error gerr[GROUP_COUNT];
+    int ok[GROUP_COUNT];
+    int failed = build_groups(r, ok, gerr);
+    if (failed && r->highp && r->d.precision == JD_PRECISION_AUTO) {
+        char first[sizeof gerr[0].msg] = "";
+        for (int g = 0; g < GROUP_COUNT && !first[0]; g++)
+            if (!ok[g]) memcpy(first, gerr[g].msg, sizeof first);
+        drop_groups(r);
+        r->highp = 0;
+        if (build_groups(r, ok, gerr) < failed) {
+            say(r, "highp packing: %s; mediump packing instead", first);
+        } else { /* no better: the packing the device is best at, and the same losses */
+            drop_groups(r);
+            r->highp = 1;
+            build_groups(r, ok, gerr);
+        }
+    }
+    if (!ok[GROUP_BASE]) return jd_fail(err, JD_ERR_UNSUPPORTED, "%s", gerr[GROUP_BASE].msg);
+    const char *gl = r->d.caps->renderer;
+    int software = strstr(gl, "llvmpipe") || strstr(gl, "softpipe") || strstr(gl, "swrast");
+    if (r->d.program_probe == JD_PROBE_ON || (r->d.program_probe == JD_PROBE_AUTO && !software)) {
+        GLuint ids[JD_PROBE_MAX], *slot[JD_PROBE_MAX];
+        int owner[JD_PROBE_MAX], drawn[JD_PROBE_MAX], n = 0;
+        for (int g = 0; g < GROUP_COUNT; g++) {
+            if (!ok[g]) continue;
+            GLuint *p[8];
+            int k = group_programs(r, g, p);
+            for (int i = 0; i < k && n < JD_PROBE_MAX; i++, n++) {
+                slot[n] = p[i];
+                ids[n] = *p[i];
+                owner[n] = g;
+            }
+        }
+        target probe = {0};
+        size_t bytes = r->target_bytes;
+        int probed = jdr_make_target(r, &probe, JD_PROBE_MAX, 1, 0, 0, "program probe", NULL) == JD_OK &&
+                     jd_program_probe(ids, n, probe.fbo, r->quad_vbo, drawn);
+        jdr_free_target(&probe);
+        r->target_bytes = bytes; /* gone again */
+        if (probed)
+            for (int i = 0; i < n; i++)
+                if (!drawn[i] && ok[owner[i]]) {
+                    ok[owner[i]] = 0;
+                    jd_fail(&gerr[owner[i]], JD_ERR_UNSUPPORTED,
+                            "program %u (%s) links but the driver draws nothing with it", *slot[i],
+                            group_what[owner[i]]);
+                }
+        if (!ok[GROUP_BASE]) return jd_fail(err, JD_ERR_UNSUPPORTED, "%s", gerr[GROUP_BASE].msg);
+    }
+    for (int g = 1; g < GROUP_COUNT; g++)
+        if (!ok[g]) {
+            drop_group(r, g);
+            say(r, "%s unavailable: %s", group_what[g], gerr[g].msg);
+        }
+    if (!ok[GROUP_AA]) r->post_aa = r->may_scale = 0; /* frames at the full resolution, edges as they come */
+    int have[JD_MODE_COUNT] = {1, ok[GROUP_SH], ok[GROUP_SH] && ok[GROUP_SPREAD], ok[GROUP_FULL]};
+    for (int m = 0; m < JD_MODE_COUNT; m++) {
+        int shown = m;
+        while (!have[shown]) shown = shown == JD_MODE_FULL ? JD_MODE_DUAL : shown - 1;
+        r->shown[m] = (jd_mode)shown;
+        if (shown != m) say(r, "%s frames are drawn as %s", jd_mode_name((jd_mode)m), jd_mode_name((jd_mode)shown));
+    }
+    return JD_OK;
+}

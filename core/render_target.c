@@ -1,0 +1,182 @@
+/* Render targets (power-of-two textures with a framebuffer, a depth
+ * renderbuffer where asked) and the mesh uploads, chunked to 16-bit
+ * indices where the GPU has no 32-bit ones. */
+#include "renderer_internal.h"
+
+#include <string.h>
+
+/* ---- start-up ---------------------------------------------------------- */
+
+/* A new texture bound to `kind`, clamped and without mipmaps: NPOT-safe
+ * in core ES 2.0. */
+static GLuint new_sampled(GLenum kind, GLint filter)
+{
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(kind, tex);
+    glTexParameteri(kind, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(kind, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(kind, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(kind, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return tex;
+}
+
+/* An RGBA8 2D texture. */
+GLuint jdr_new_texture(int w, int h, GLint filter)
+{
+    GLuint tex = new_sampled(GL_TEXTURE_2D, filter);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    return tex;
+}
+
+jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_depth, int linear,
+                             const char *what, jd_error *err)
+{
+    const jd_gl_caps *c = r->d.caps;
+    t->w = w;
+    t->h = h;
+    t->tw = pot(w);
+    t->th = pot(h);
+    if (t->tw > c->max_texture_size || t->th > c->max_texture_size)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s target %dx%d exceeds the max texture size %d", what, t->tw,
+                       t->th, c->max_texture_size);
+    t->tex = jdr_new_texture(t->tw, t->th, linear ? GL_LINEAR : GL_NEAREST);
+    glGenFramebuffers(1, &t->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
+    r->target_bytes += (size_t)t->tw * t->th * 4;
+    if (with_depth) {
+        glGenRenderbuffers(1, &t->depth);
+        glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, t->tw, t->th);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
+        r->target_bytes += (size_t)t->tw * t->th * 2;
+    }
+    GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE)
+        return jd_fail(err, JD_ERR_GL, "%s framebuffer %dx%d is incomplete (0x%x)", what, w, h, st);
+    return JD_OK;
+}
+
+/* A cube map of RGBA8 faces, each its own framebuffer: six targets sharing
+ * one texture (held by the first). Linear filtering, clamped at the edges. */
+jd_result jdr_make_cube_target(jd_renderer *r, target *faces, int size, const char *what, jd_error *err)
+{
+    GLuint tex = new_sampled(GL_TEXTURE_CUBE_MAP, GL_LINEAR);
+    for (int f = 0; f < 6; f++)
+        glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f, 0, GL_RGBA, size, size, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    faces[0].tex = tex;
+    for (int f = 0; f < 6; f++) {
+        target *t = &faces[f];
+        t->w = t->h = t->tw = t->th = size;
+        glGenFramebuffers(1, &t->fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X + f, tex, 0);
+        GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (st != GL_FRAMEBUFFER_COMPLETE)
+            return jd_fail(err, JD_ERR_GL, "%s face %d (%dx%d) is incomplete (0x%x)", what, f, size, size, st);
+    }
+    r->target_bytes += (size_t)6 * size * size * 4;
+    return JD_OK;
+}
+
+void jdr_free_target(target *t)
+{
+    if (t->fbo) glDeleteFramebuffers(1, &t->fbo);
+    if (t->tex) glDeleteTextures(1, &t->tex);
+    if (t->depth) glDeleteRenderbuffers(1, &t->depth);
+    memset(t, 0, sizeof *t);
+}
+
+/* Positions normalised to the bounding sphere (centre 0, radius 1) keep
+ * coordinates small for fp16 varyings; interleaved with normals. */
+/* One vertex as uploaded: the position centred and scaled to the unit
+ * sphere, then the normal. */
+static void pack_vertex(float *o, const jd_mesh *m, uint32_t i, jd_vec3 c, float inv_r)
+{
+    const float *p = m->positions + 3 * (size_t)i, *n = m->normals + 3 * (size_t)i;
+    o[0] = (p[0] - c.x) * inv_r;
+    o[1] = (p[1] - c.y) * inv_r;
+    o[2] = (p[2] - c.z) * inv_r;
+    o[3] = n[0];
+    o[4] = n[1];
+    o[5] = n[2];
+}
+
+jd_result jdr_upload_mesh(const jd_mesh *m, jd_vec3 c, float inv_r, GLuint *vbo, GLuint *ibo,
+                             jd_arena *a, jd_error *err)
+{
+    size_t top = jd_arena_top_mark(a);
+    float *v = jd_arena_alloc_top(a, sizeof(float) * 6 * m->num_vertices, 16, "vertex upload scratch", err);
+    if (!v) return JD_ERR_BUDGET;
+    for (uint32_t i = 0; i < m->num_vertices; i++) pack_vertex(v + 6 * (size_t)i, m, i, c, inv_r);
+    glGenBuffers(1, vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, *vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6 * m->num_vertices), v, GL_STATIC_DRAW);
+    glGenBuffers(1, ibo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, *ibo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)((size_t)m->index_size * m->num_indices), m->indices,
+                 GL_STATIC_DRAW);
+    jd_arena_top_reset(a, top);
+    return glGetError() == GL_NO_ERROR ? JD_OK : jd_fail(err, JD_ERR_GL, "mesh upload failed (out of GPU memory?)");
+}
+
+/* The mesh as chunks of at most 65,535 distinct vertices each, in triangle
+ * order (which meshoptimizer made local: few vertices repeat across
+ * chunks). Vertex and index data for every chunk go into one buffer each. */
+jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c, float inv_r, jd_arena *a,
+                                     jd_error *err)
+{
+    const uint32_t limit = 65535;
+    size_t top = jd_arena_top_mark(a);
+    /* Worst case every triangle brings three new vertices. */
+    size_t max_chunks = (size_t)m->num_indices / 3 / (limit / 3) + 2;
+    int32_t *local = jd_arena_alloc_top(a, sizeof(int32_t) * m->num_vertices, 16, "chunk vertex map", err);
+    uint32_t *used = jd_arena_alloc_top(a, sizeof(uint32_t) * limit, 16, "chunk vertex list", err);
+    /* Copies: at most one per index, and in practice far fewer than twice
+     * the vertices (a chunk repeats only its border). */
+    size_t v_cap = m->num_indices < (size_t)m->num_vertices * 2 ? m->num_indices : (size_t)m->num_vertices * 2;
+    float *v = jd_arena_alloc_top(a, sizeof(float) * 6 * v_cap, 16, "chunked vertex upload", err);
+    uint16_t *ix = jd_arena_alloc_top(a, sizeof(uint16_t) * m->num_indices, 16, "chunked index upload", err);
+    r->chunks = jd_arena_alloc(a, sizeof *r->chunks * max_chunks, 16, "mesh chunks", err);
+    if (!local || !used || !v || !ix || !r->chunks) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
+    for (uint32_t i = 0; i < m->num_vertices; i++) local[i] = -1;
+    size_t nv = 0, ni = 0;
+    uint32_t n_used = 0;
+    r->num_chunks = 0;
+    struct mesh_chunk *ch = NULL;
+    for (uint32_t t = 0; t < m->num_indices; t += 3) {
+        uint32_t tri[3] = {jd_mesh_index(m, t), jd_mesh_index(m, t + 1), jd_mesh_index(m, t + 2)};
+        int fresh = 0;
+        for (int k = 0; k < 3; k++) fresh += local[tri[k]] < 0;
+        if (!ch || n_used + (uint32_t)fresh > limit) { /* a new chunk */
+            for (uint32_t k = 0; k < n_used; k++) local[used[k]] = -1;
+            n_used = 0;
+            if ((size_t)r->num_chunks == max_chunks) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_BUDGET, "too many mesh chunks"); }
+            ch = &r->chunks[r->num_chunks++];
+            ch->index_offset = ni * sizeof(uint16_t);
+            ch->vertex_offset = nv * 6 * sizeof(float);
+            ch->count = 0;
+            ch->vertices = 0;
+        }
+        for (int k = 0; k < 3; k++) {
+            if (local[tri[k]] < 0) {
+                if (nv == v_cap) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_BUDGET, "mesh chunks: vertex copies over the scratch"); }
+                pack_vertex(v + 6 * nv++, m, tri[k], c, inv_r);
+                ch->vertices++;
+                local[tri[k]] = (int32_t)n_used;
+                used[n_used++] = tri[k];
+            }
+            ix[ni++] = (uint16_t)local[tri[k]];
+        }
+        ch->count += 3;
+    }
+    glGenBuffers(1, &r->mesh_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, r->mesh_vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6 * nv), v, GL_STATIC_DRAW);
+    glGenBuffers(1, &r->mesh_ibo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->mesh_ibo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof(uint16_t) * ni), ix, GL_STATIC_DRAW);
+    jd_arena_top_reset(a, top);
+    return glGetError() == GL_NO_ERROR ? JD_OK : jd_fail(err, JD_ERR_GL, "mesh upload failed (out of GPU memory?)");
+}
