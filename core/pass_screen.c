@@ -149,12 +149,15 @@ void jdr_pass_spread(jd_renderer *r, const jd_scene *s, const frame_params *f)
 /* Without vertex diffusion, full's levels are summed per fragment at a
  * lower resolution, read once (bilinear) in the main pass: the levels are
  * smooth (their finest Gaussian is a level texel wide), so two samples per
- * level texel across the picture will do, 1/2 to 1/4 of its resolution. */
+ * level texel across the picture will do, 1/2 to 1/8 of its resolution (a
+ * thinner part than 8 pixels takes the levels' light of its neighbours, or
+ * none where it has no covered neighbour). */
 void jdr_pass_wide(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
     (void)s;
     float level_px = 2.0f / (float)r->d.diffusion_size * f->px_per_world;
-    r->wide_div = level_px >= 8.0f ? 4 : level_px >= 6.0f ? 3 : 2;
+    int div = (int)(level_px * 0.5f);
+    r->wide_div = div < 2 ? 2 : div > 8 ? 8 : div;
     r->wide.w = (r->iw + r->wide_div - 1) / r->wide_div;
     r->wide.h = (r->ih + r->wide_div - 1) / r->wide_div;
     draw_layer(r, &r->wide, &r->wide_prog, f, 1, "wide");
