@@ -26,20 +26,22 @@ static int print_estimate(jd_session *s, const jd_board *b, const jd_scene *sc, 
         written += count.pass[i].bytes_written;
         read += count.pass[i].bytes_read;
     }
-    printf(", \"estimate\": {\"board\": \"%s\", \"frame_ms\": %.3f, \"fps\": %.1f, \"vertex_ms\": %.3f, "
-           "\"fragment_ms\": %.3f, \"target_switches\": %d, \"bytes_written\": %.0f, \"bytes_read\": %.0f, \"passes\": [",
-           b->name, est.frame_ms, 1000.0 / est.frame_ms, est.vertex_ms, est.fragment_ms, count.target_switches, written,
-           read);
+    double khz = b->clock_mhz * 1e3; /* clocks per ms */
+    printf(", \"estimate\": {\"board\": \"%s\", \"frame_ms\": %.3f, \"frame_cycles\": %.0f, \"fps\": %.1f, "
+           "\"vertex_ms\": %.3f, \"fragment_ms\": %.3f, \"target_switches\": %d, \"bytes_written\": %.0f, "
+           "\"bytes_read\": %.0f, \"passes\": [",
+           b->name, est.frame_ms, est.frame_ms * khz, 1000.0 / est.frame_ms, est.vertex_ms, est.fragment_ms,
+           count.target_switches, written, read);
     for (int i = 0; i < count.num_passes; i++) {
         const jd_pass_count *p = &count.pass[i];
         const jd_pass_estimate *e = &est.pass[i];
         printf("%s{\"pass\": \"%s\", \"program\": \"%s\", \"size\": \"%dx%d\", \"fragments\": %.0f, "
                "\"vertices\": %.0f, \"triangles\": %.0f, \"fs_instructions\": %.0f, \"vs_instructions\": %.0f, "
                "\"loop_trips\": %.0f, \"fs_cost\": %.1f, \"vs_cost\": %.1f, \"bytes_written\": %.0f, \"bytes_read\": %.0f, "
-               "\"ms\": %.4f}",
+               "\"cycles\": %.0f, \"ms\": %.4f}",
                i ? ", " : "", p->pass, p->program, p->width, p->height, p->fragments, p->vertices, p->triangles,
                e->fs_instructions, e->vs_instructions, p->trips, e->fs_cost, e->vs_cost, p->bytes_written,
-               p->bytes_read, e->ms);
+               p->bytes_read, e->ms * khz, e->ms);
     }
     printf("]}");
     return 1;
