@@ -70,6 +70,26 @@ static int find_row(const char *table, const char *compiler, const char *program
     return 0;
 }
 
+/* The vertex cost of vertex shader `vs` in any row of the compiler's. */
+static double vertex_cost_of(const char *table, const char *compiler, const char *vs)
+{
+    size_t n = strlen(vs);
+    for (const char *p = table; *p;) {
+        const char *nl = strchr(p, '\n');
+        size_t len = nl ? (size_t)(nl - p) : strlen(p);
+        char w[24][100];
+        int k = split(p, len, w, 24);
+        p += len + (nl ? 1 : 0);
+        if (k < 6 || strcmp(w[0], compiler)) continue;
+        const char *name = strchr(w[1], ':');
+        name = name ? name + 1 : w[1];
+        if (strncmp(name, vs, n) || name[n] != '+') continue;
+        for (int i = 0; i + 1 < k; i++)
+            if (!strcmp(w[i], "vc") && number(w[i + 1]) >= 0) return number(w[i + 1]);
+    }
+    return -1.0;
+}
+
 /* The fragment cost at t trips of the program's dynamic loops: as built it
  * runs the loop once (fc: outside + body + the loop's own overhead); built
  * with one and two constant trips (loop gone) it costs f1 = outside + body
@@ -97,6 +117,16 @@ jd_result jd_frame_cost_estimate(const jd_board *b, const jd_frame_count *c, con
             return jd_fail(err, JD_ERR_ARG,
                            "the compiler table has no row for %s on %s (pass %s): run tools/device-shaders.sh --update",
                            p->program, b->compiler, p->pass);
+        if (row.vc < 0) { /* a driver that reused a compiled vertex shader printed no count: another row's */
+            char vs[64];
+            const char *plus = strchr(p->program, '+');
+            size_t n = plus ? (size_t)(plus - p->program) : 0;
+            if (n && n < sizeof vs - 1) {
+                memcpy(vs, p->program, n);
+                vs[n] = 0;
+                row.vc = row.vs = vertex_cost_of(table, b->compiler, vs);
+            }
+        }
         if (row.vc < 0 || row.fc < 0)
             return jd_fail(err, JD_ERR_ARG, "the compiler table's row for %s on %s has no instruction count",
                            p->program, b->compiler);
