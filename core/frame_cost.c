@@ -42,17 +42,29 @@ static int split(const char *line, size_t len, char words[][100], int max)
     return n;
 }
 
+/* The compiler's next row from *at on: its words w (n of them) and the
+ * program's name without its number. 0 at the table's end. */
+static int next_row(const char **at, const char *compiler, char w[][100], int *n, const char **name)
+{
+    while (**at) {
+        const char *p = *at, *nl = strchr(p, '\n');
+        size_t len = nl ? (size_t)(nl - p) : strlen(p);
+        *at = p + len + (nl ? 1 : 0);
+        *n = split(p, len, w, 24);
+        if (*n < 6 || strcmp(w[0], compiler) || strcmp(w[2], "vs") || strcmp(w[4], "fs")) continue;
+        const char *c = strchr(w[1], ':');
+        *name = c ? c + 1 : w[1];
+        return 1;
+    }
+    return 0;
+}
+
 static int find_row(const char *table, const char *compiler, const char *program, table_row *row)
 {
-    for (const char *p = table; *p;) {
-        const char *nl = strchr(p, '\n');
-        size_t len = nl ? (size_t)(nl - p) : strlen(p);
-        char w[24][100];
-        int n = split(p, len, w, 24);
-        p += len + (nl ? 1 : 0);
-        if (n < 6 || strcmp(w[0], compiler) || strcmp(w[2], "vs") || strcmp(w[4], "fs")) continue;
-        const char *name = strchr(w[1], ':');
-        name = name ? name + 1 : w[1];
+    char w[24][100];
+    const char *name;
+    int n;
+    for (const char *at = table; next_row(&at, compiler, w, &n, &name);) {
         if (strcmp(name, program)) continue;
         row->vs = number(w[3]);
         row->fs = number(w[5]);
@@ -73,18 +85,13 @@ static int find_row(const char *table, const char *compiler, const char *program
 /* The vertex cost of vertex shader `vs` in any row of the compiler's. */
 static double vertex_cost_of(const char *table, const char *compiler, const char *vs)
 {
-    size_t n = strlen(vs);
-    for (const char *p = table; *p;) {
-        const char *nl = strchr(p, '\n');
-        size_t len = nl ? (size_t)(nl - p) : strlen(p);
-        char w[24][100];
-        int k = split(p, len, w, 24);
-        p += len + (nl ? 1 : 0);
-        if (k < 6 || strcmp(w[0], compiler)) continue;
-        const char *name = strchr(w[1], ':');
-        name = name ? name + 1 : w[1];
-        if (strncmp(name, vs, n) || name[n] != '+') continue;
-        for (int i = 0; i + 1 < k; i++)
+    char w[24][100];
+    const char *name;
+    int n;
+    size_t len = strlen(vs);
+    for (const char *at = table; next_row(&at, compiler, w, &n, &name);) {
+        if (strncmp(name, vs, len) || name[len] != '+') continue;
+        for (int i = 0; i + 1 < n; i++)
             if (!strcmp(w[i], "vc") && number(w[i + 1]) >= 0) return number(w[i + 1]);
     }
     return -1.0;

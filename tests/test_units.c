@@ -272,6 +272,14 @@ static void test_frame_cost(void)
     CHECK(jd_frame_cost_estimate(b, &c, table, &e, &err) == JD_ERR_ARG && strstr(err.msg, "nothing.vert+nothing.frag") &&
               strstr(err.msg, "lima"),
           "a program the table lacks is named: %s", err.msg);
+    /* A vertex shader the driver reused prints no count: another row's. */
+    static const char reuse[] =
+        "lima           0:quad.vert+a.frag  vs    6 fs   10 spills   0 fills   0 cost vc    6 fc   10 f1   10 f2   10 - ok\n"
+        "lima           1:quad.vert+b.frag  vs    - fs   57 spills   0 fills   0 cost vc    - fc   57 f1   57 f2   57 - ok\n";
+    snprintf(c.pass[0].program, sizeof c.pass[0].program, "quad.vert+b.frag");
+    c.pass[0].trips = 1;
+    CHECK(jd_frame_cost_estimate(b, &c, reuse, &e, &err) == JD_OK && e.pass[0].vs_cost == 6 && e.pass[0].fs_cost == 57,
+          "a reused vertex shader's count from another row: %g (%s)", e.pass[0].vs_cost, err.msg);
     /* The built-in table: the one CI checks. */
     CHECK(strstr(jd_frame_cost_table(), "lima ") && strstr(jd_frame_cost_table(), "mesh.vert+shade.frag[full]"),
           "the compiler table is built in");
