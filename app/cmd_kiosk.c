@@ -150,8 +150,13 @@ int jd_cmd_kiosk(int argc, char **argv)
                 fprintf(stderr, "jade kiosk: %s\n", err.msg);
                 rc = 1;
                 quit = 1;
-            } else if (ev.type == JD_EVENT_RESIZE)
-                printf("kiosk: the display is now %dx%d\n", ev.w, ev.h);
+            } else if (ev.type == JD_EVENT_RESIZE) {
+                /* The tier follows the size: said again with it. */
+                jd_renderer_info info;
+                jd_renderer_get_info(s.renderer, &info);
+                printf("kiosk: the display is now %dx%d%s%s\n", ev.w, ev.h, info.tier ? "; " : "",
+                       info.tier ? info.tier : "");
+            }
             else if (ev.type == JD_EVENT_DRAG) {
                 int w, h;
                 jd_platform_size(s.platform, &w, &h);

@@ -225,7 +225,8 @@ static int make_renderer(jd_session *s, jd_options *o, const char *cmd)
     jd_renderer_info info;
     jd_renderer_get_info(s->renderer, &info);
     if (info.fallback) fprintf(stderr, "jade %s: on this GPU: %s\n", cmd, info.fallback);
-    if (info.tier) fprintf(stderr, "jade %s: %s; --render-scale 1 for the full resolution\n", cmd, info.tier);
+    if (info.tier && strcmp(cmd, "info")) /* info --compile builds the enlarging pass; it draws nothing */
+        fprintf(stderr, "jade %s: %s; --render-scale 1 for the full resolution\n", cmd, info.tier);
     return 1;
 }
 

@@ -9,13 +9,14 @@ run() { # run PLATFORM SIGNAL[+SIGNAL: a second one right after] [env...]
     plat=$1 sig=${2%+*} again=
     case $2 in *+*) again=${2#*+} ;; esac
     shift 2
+    rm -f "$out/kiosk_$plat.$sig$again.txt" # the last run's: see the SIGHUP check
     env "$@" "$jade" kiosk --platform "$plat" --size 160x120 > "$out/kiosk_$plat.$sig$again.txt" 2>&1 &
     pid=$!
     # Until it has drawn frames: start-up (decode, shaders) is not the point.
     # Up to 60 s: on a loaded machine a start took over 10 s, and a SIGHUP
     # sent before main() installs its handlers ends any process.
     i=0
-    while [ $i -lt 600 ] && ! grep -q "anti-aliasing" "$out/kiosk_$plat.$sig$again.txt"; do sleep 0.1; i=$((i + 1)); done
+    while [ $i -lt 600 ] && ! grep -qs "anti-aliasing" "$out/kiosk_$plat.$sig$again.txt"; do sleep 0.1; i=$((i + 1)); done
     sleep 0.5
     kill -"$sig" "$pid"
     sent=$(date +%s%N)
@@ -60,10 +61,13 @@ fi
 # the live GL objects stay as many after 6 mesh changes as before.
 conf="$out/kiosk_hup.conf"
 printf '# test\nplatform = headless\nsize = 96x72\nmaterial = skin1\nlog-every = 0.3\n' > "$conf"
+# The last run's log goes first: the shell truncates it in the child, and a
+# grep here could read the old one's start line before that.
+rm -f "$out/kiosk_hup.out" "$out/kiosk_hup.err"
 "$jade" kiosk --config "$conf" > "$out/kiosk_hup.out" 2> "$out/kiosk_hup.err" &
 pid=$!
 i=0
-while [ $i -lt 600 ] && ! grep -q "anti-aliasing" "$out/kiosk_hup.err" && kill -0 "$pid" 2>/dev/null; do sleep 0.1; i=$((i + 1)); done
+while [ $i -lt 600 ] && ! grep -qs "anti-aliasing" "$out/kiosk_hup.err" && kill -0 "$pid" 2>/dev/null; do sleep 0.1; i=$((i + 1)); done
 # A kiosk that did not start is said, with where it is, not sent SIGHUPs
 # (which would end a process that has no handler yet).
 if ! grep -q "anti-aliasing" "$out/kiosk_hup.err"; then
@@ -120,10 +124,11 @@ if command -v Xvfb >/dev/null; then
     # Full screen, no pointer, and a drag turns the object until --idle
     # seconds without input bring it back.
     if [ "$drag" != none ]; then
+        rm -f "$out/kiosk_drag.out" "$out/kiosk_drag.err"
         DISPLAY=":$d" "$jade" kiosk --platform x11 --idle 1 --log-every 0.5 > "$out/kiosk_drag.out" 2> "$out/kiosk_drag.err" &
         pid=$!
         i=0
-        while [ $i -lt 600 ] && ! grep -q "anti-aliasing" "$out/kiosk_drag.err"; do sleep 0.1; i=$((i + 1)); done
+        while [ $i -lt 600 ] && ! grep -qs "anti-aliasing" "$out/kiosk_drag.err"; do sleep 0.1; i=$((i + 1)); done
         sleep 0.3
         DISPLAY=":$d" "$drag" jade 200 -60 > "$out/kiosk_drag.send" 2>&1
         i=0
