@@ -4,6 +4,7 @@
 #include "renderer_internal.h"
 
 #include <math.h>
+#include <string.h>
 
 static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const frame_params *f, int w, int h)
 {
@@ -157,9 +158,9 @@ void jdr_pass_wide(jd_renderer *r, const jd_scene *s, const frame_params *f)
     (void)s;
     float level_px = 2.0f / (float)r->d.diffusion_size * f->px_per_world;
     int div = (int)(level_px * 0.5f);
-    r->wide_div = div < 2 ? 2 : div > 8 ? 8 : div;
-    r->wide.w = (r->iw + r->wide_div - 1) / r->wide_div;
-    r->wide.h = (r->ih + r->wide_div - 1) / r->wide_div;
+    div = div < 2 ? 2 : div > 8 ? 8 : div;
+    r->wide.w = (r->iw + div - 1) / div;
+    r->wide.h = (r->ih + div - 1) / div;
     draw_layer(r, &r->wide, &r->wide_prog, f, 1, "wide");
     jdr_counted_trips(r, 4); /* jd_level_at's texels */
 }
@@ -168,7 +169,7 @@ void jdr_pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
     /* Into the target, or into `scene` for the pass after: anti-aliasing,
      * or enlarging a picture drawn smaller. */
-    int via_scene = r->post_aa || r->iw != r->d.width || r->ih != r->d.height;
+    int via_scene = jdr_via_scene(r);
     int w = r->iw, h = r->ih;
     /* "main": at the picture's resolution (the frame-cost model's name). */
     jdr_count_target(r, w == r->d.width && h == r->d.height ? "main" : "shade-scaled", w, h);
@@ -199,6 +200,43 @@ void jdr_pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
     jdr_draw_mesh(r, &f->mvp);
 }
 
+/* The object's extent on screen in NDC: the proxy's vertices projected,
+ * and as far again as the mesh may lie from its proxy (proxy_error, at the
+ * nearest vertex's depth). The bunny's box corners took 2.6 times the
+ * pixels at 1080p, each one a fragment of the pass after the frame. Found
+ * again only when the transform changes (a still camera keeps it). 0: a
+ * vertex behind the camera, filter everything. */
+static int object_extent(jd_renderer *r, const jd_mat4 *mvp, float *x0, float *y0, float *x1, float *y1)
+{
+    const float *m = mvp->m;
+    if (!r->extent_valid || memcmp(r->extent_mvp, m, sizeof r->extent_mvp)) {
+        float e0 = 1, f0 = 1, e1 = -1, f1 = -1, w_min = 1e30f;
+        int inside = 1;
+        for (uint32_t i = 0; i < r->proxy.num_vertices && inside; i++) {
+            const float *q = r->proxy.positions + 3 * i;
+            jd_vec3 p = jd_v3_scale(jd_v3_sub(jd_v3(q[0], q[1], q[2]), r->place_c), r->place_inv_r);
+            float cx = m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12], cy = m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13];
+            float cw = m[3] * p.x + m[7] * p.y + m[11] * p.z + m[15];
+            if (cw <= 1e-4f) { inside = 0; break; }
+            e0 = fminf(e0, cx / cw); e1 = fmaxf(e1, cx / cw);
+            f0 = fminf(f0, cy / cw); f1 = fmaxf(f1, cy / cw);
+            w_min = fminf(w_min, cw);
+        }
+        if (inside) { /* world units to NDC at the nearest depth: the transform's scale over w */
+            float sx = sqrtf(m[0] * m[0] + m[4] * m[4] + m[8] * m[8]), sy = sqrtf(m[1] * m[1] + m[5] * m[5] + m[9] * m[9]);
+            float e = r->proxy_error * fmaxf(sx, sy) / w_min;
+            e0 -= e; e1 += e; f0 -= e; f1 += e;
+        }
+        float ext[4] = {e0, f0, e1, f1};
+        memcpy(r->extent, ext, sizeof ext);
+        memcpy(r->extent_mvp, m, sizeof r->extent_mvp);
+        r->extent_inside = inside;
+        r->extent_valid = 1;
+    }
+    *x0 = r->extent[0]; *y0 = r->extent[1]; *x1 = r->extent[2]; *y1 = r->extent[3];
+    return r->extent_inside;
+}
+
 /* The frame from `scene` into the platform's target, its edges smoothed.
  * Only the object's box on screen (its corners projected, two pixels
  * more) is filtered; the rest is background, cleared. */
@@ -212,29 +250,9 @@ void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f)
     for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f));
     glClearColor(bg[0], bg[1], bg[2], 1);
     glClear(GL_COLOR_BUFFER_BIT);
-    /* The object's extent on screen: the proxy's vertices projected, and
-     * as far again as the mesh may lie from its proxy (proxy_error, at the
-     * nearest vertex's depth). The bunny's box corners took 2.6 times the
-     * pixels at 1080p, each one a fragment of this pass. */
-    float x0 = 1, y0 = 1, x1 = -1, y1 = -1, w_min = 1e30f;
-    int inside = 1;
+    float x0, y0, x1, y1;
+    int inside = object_extent(r, &f->mvp, &x0, &y0, &x1, &y1);
     double area = (double)r->d.width * r->d.height;
-    const float *m = f->mvp.m;
-    for (uint32_t i = 0; i < r->proxy.num_vertices && inside; i++) {
-        const float *q = r->proxy.positions + 3 * i;
-        jd_vec3 p = jd_v3_scale(jd_v3_sub(jd_v3(q[0], q[1], q[2]), r->place_c), r->place_inv_r);
-        float cx = m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12], cy = m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13];
-        float cw = m[3] * p.x + m[7] * p.y + m[11] * p.z + m[15];
-        if (cw <= 1e-4f) { inside = 0; break; } /* behind the camera: filter everything */
-        x0 = fminf(x0, cx / cw); x1 = fmaxf(x1, cx / cw);
-        y0 = fminf(y0, cy / cw); y1 = fmaxf(y1, cy / cw);
-        w_min = fminf(w_min, cw);
-    }
-    if (inside) { /* world units to NDC at the nearest depth: the transform's scale over w */
-        float sx = sqrtf(m[0] * m[0] + m[4] * m[4] + m[8] * m[8]), sy = sqrtf(m[1] * m[1] + m[5] * m[5] + m[9] * m[9]);
-        float e = r->proxy_error * fmaxf(sx, sy) / w_min;
-        x0 -= e; x1 += e; y0 -= e; y1 += e;
-    }
     if (inside) {
         int px0 = (int)floorf((x0 * 0.5f + 0.5f) * r->d.width) - 2, px1 = (int)ceilf((x1 * 0.5f + 0.5f) * r->d.width) + 2;
         int py0 = (int)floorf((y0 * 0.5f + 0.5f) * r->d.height) - 2, py1 = (int)ceilf((y1 * 0.5f + 0.5f) * r->d.height) + 2;

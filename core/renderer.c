@@ -12,9 +12,10 @@
  * renderer string or profile. NULL for any other GPU. */
 static const char *tier_board(const jd_gl_caps *c)
 {
-    if (c->utgard || !strcmp(c->profile, "mali400")) return "Mali-400/450";
-    if (!strcmp(c->profile, "vc4") || strstr(c->renderer, "VC4") || strstr(c->renderer, "VideoCore")) return "VideoCore IV";
-    return NULL;
+    /* gl_caps and the profiles already tell these boards apart (their
+     * small register files): only the name is found here. */
+    if (!c->small_register_file) return NULL;
+    return c->utgard || !strcmp(c->profile, "mali400") ? "Mali-400/450" : "VideoCore IV";
 }
 
 /* The share of the picture's size a device's tier draws at (render_scale
@@ -241,7 +242,6 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
     r->scene.h = height;
     /* full's levels' sum: half the picture's resolution until a frame
      * says how large a level texel is on screen (jd_renderer_frame). */
-    r->wide_div = 2;
     r->wide.w = (width + 1) / 2;
     r->wide.h = (height + 1) / 2;
     int div = r->d.spread_divisor;
@@ -390,7 +390,7 @@ typedef struct plan_step {
 } plan_step;
 
 static int levels_on_screen(const jd_renderer *r) { return !r->vertex_diffusion; }
-static int pass_after(const jd_renderer *r) { return r->post_aa || r->iw != r->d.width || r->ih != r->d.height; }
+static int pass_after(const jd_renderer *r) { return jdr_via_scene(r); }
 
 static const plan_step plan[] = {
     {"the dipole's fit", MODE(FULL), EVERY_FRAME, -1, NULL, jdr_update_fit},

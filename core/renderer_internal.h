@@ -125,8 +125,11 @@ struct jd_renderer {
     target light, atlas, sh1, sh_mid_t, sh2, sh3, irr[6], spread0, spread_tmp, spread1, spread2;
     target diff_tmp, diff_lv[DIFF_TEXTURES];
     target scene;         /* the frame before anti-aliasing or enlarging (post_aa, or drawn smaller) */
-    target wide;          /* full's levels summed at 1/wide_div resolution (without vertex diffusion) */
-    int wide_div;
+    target wide;          /* full's levels summed at a lower resolution (without vertex diffusion) */
+    /* The object's extent on screen in NDC (x0, y0, x1, y1) for the pass
+     * after the frame, and the transform it was found for. */
+    float extent[4], extent_mvp[16];
+    int extent_inside, extent_valid;
     size_t target_bytes;
     float box_half;
     jd_vec3 place_c;      /* the mesh's coordinates to the renderer's: (p - place_c) * place_inv_r */
@@ -221,5 +224,12 @@ void jdr_counted_quad(jd_renderer *r, double fragments, double vertices, double 
 void jdr_counted_read(jd_renderer *r, const target *t, double layers);
 void jdr_counted_trips(jd_renderer *r, double trips);
 void jdr_counted_open(jd_renderer *r, const char *what, int w, int h);
+
+/* The frame goes to `scene` first, then through the pass after it:
+ * anti-aliasing, or enlarging a picture drawn smaller. */
+static inline int jdr_via_scene(const jd_renderer *r)
+{
+    return r->post_aa || r->iw != r->d.width || r->ih != r->d.height;
+}
 
 #endif
