@@ -8,6 +8,7 @@
 #include "gl_caps.h"
 #include "gl_program.h"
 #include "platform.h"
+#include "frame_cost.h"
 #include "profile.h"
 
 /* info --compile: every program the renderer builds for this device (or
@@ -57,6 +58,28 @@ static int compile_all(jd_options *o)
                    o->profile ? o->profile : "no profile");
     jd_session_close(&s);
     return ok && !l.failed ? 0 : 1;
+}
+
+/* A program limit beside what jade's largest programs need there, from
+ * the compiler table built into jade (tests/device-shaders.expected). */
+static void print_program_limit(const jd_gl_caps *c)
+{
+    char drv[32];
+    snprintf(drv, sizeof drv, "etnaviv-gc%d", c->vivante ? c->vivante : 2000);
+    int most = 0;
+    for (const char *line = jd_frame_cost_table(); line && *line;) {
+        char name[32];
+        int vs = 0, fs = 0;
+        if (sscanf(line, "%31s %*s vs %d fs %d", name, &vs, &fs) >= 1 && !strcmp(name, drv)) {
+            if (vs > most) most = vs;
+            if (fs > most) most = fs;
+        }
+        const char *nl = strchr(line, '\n');
+        line = nl ? nl + 1 : NULL;
+    }
+    printf("program limit      %d instructions per stage (no instruction cache); ", c->max_program_instructions);
+    if (most) printf("jade's largest on %s: %d\n", drv, most);
+    else printf("%s is not in jade's compiler table\n", drv);
 }
 
 int jd_cmd_info(int argc, char **argv)
@@ -137,6 +160,9 @@ int jd_cmd_info(int argc, char **argv)
                                                   "lowers mediump only on CPUs with F16C)"
                                                 : "unknown (the canary shader did not run)");
     if (c.utgard) printf("                   Mali-400/450 recognised by name: fp16 fragments, mediump packing\n");
+    if (c.vivante) printf("                   Vivante GC%d recognised by name\n", c.vivante);
+    if (c.adreno) printf("                   Adreno %d recognised by name (Mesa's FD307 is the Adreno 306)\n", c.adreno);
+    if (c.max_program_instructions) print_program_limit(&c);
     printf("SH packing         %s\n", c.frag_highp_precision >= 23 ? "highp (3 bytes)" : "mediump (2 x 2 bytes)");
     printf("thickness read     %s\n", c.max_vertex_texture_units >= 2 ? "per vertex" : "per fragment (no vertex texture units)");
     printf("full's diffusion   %s\n", c.max_vertex_texture_units >= 6 ? "per vertex" : "per fragment, at half resolution (under 6 vertex texture units)");

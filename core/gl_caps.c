@@ -1,6 +1,7 @@
 #include "gl_caps.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "gl.h"
@@ -19,6 +20,37 @@ static void copy_str(char *dst, size_t cap, GLenum what)
 {
     const char *s = (const char *)glGetString(what);
     snprintf(dst, cap, "%s", s ? s : "?");
+}
+
+/* The GPUs jade knows by name: what their queries do not say. */
+void jd_gl_caps_recognise(jd_gl_caps *c)
+{
+    /* Mali-400/450 (Utgard) fragment processors compute in fp16 whatever
+     * the precision query says: Mesa's lima reports 23 bits for mediump and
+     * highp. Recognised by name, so jade packs for mediump there. */
+    if (strstr(c->renderer, "Mali-4") || strstr(c->renderer, "Mali-3") || strstr(c->renderer, "Mali-2") ||
+        strstr(c->renderer, "Mali400") || strstr(c->renderer, "Mali450") || !strncmp(c->renderer, "lima", 4)) {
+        c->utgard = 1;
+        c->small_register_file = 1;
+        c->frag_highp_precision = 0;
+        c->frag_highp_range = 0;
+        if (c->frag_mediump_precision > 10) c->frag_mediump_precision = 10;
+        if (c->frag_mediump_range > 15) c->frag_mediump_range = 15;
+    }
+    /* VideoCore IV (Mesa vc4 says "VC4 V3D 2.1"; Broadcom's blob "VideoCore IV HW"). */
+    if (strstr(c->renderer, "VC4") || strstr(c->renderer, "VideoCore IV")) c->small_register_file = 1;
+    /* Vivante ("Vivante GC2000 rev 5108" from Mesa etnaviv, "GC2000 core"
+     * with vendor "Vivante Corporation" from Vivante's driver) and Adreno
+     * ("FD307" from Mesa freedreno, for the Adreno 306 of chip id 3.0.6.0;
+     * "Adreno (TM) 306" from Qualcomm's): the model sets the frame-cost
+     * tier and, on Vivante, the program size limit. */
+    const char *gc = strstr(c->renderer, "GC");
+    if (gc && (strstr(c->renderer, "Vivante") || strstr(c->vendor, "Vivante")) && gc[2] >= '1' && gc[2] <= '9')
+        c->vivante = atoi(gc + 2);
+    if (c->vivante > 0 && c->vivante < 3000) c->max_program_instructions = 256;
+    if (!strncmp(c->renderer, "FD", 2) && c->renderer[2] >= '1' && c->renderer[2] <= '9') c->adreno = atoi(c->renderer + 2);
+    const char *a = strstr(c->renderer, "Adreno (TM) ");
+    if (a) c->adreno = atoi(a + strlen("Adreno (TM) "));
 }
 
 jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)
@@ -50,20 +82,7 @@ jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)
     glGetShaderPrecisionFormat(GL_FRAGMENT_SHADER, GL_MEDIUM_FLOAT, range, &prec);
     c->frag_mediump_precision = prec;
     c->frag_mediump_range = range[1];
-    /* Mali-400/450 (Utgard) fragment processors compute in fp16 whatever
-     * the precision query says: Mesa's lima reports 23 bits for mediump and
-     * highp. Recognised by name, so jade packs for mediump there. */
-    if (strstr(c->renderer, "Mali-4") || strstr(c->renderer, "Mali-3") || strstr(c->renderer, "Mali-2") ||
-        strstr(c->renderer, "Mali400") || strstr(c->renderer, "Mali450") || !strncmp(c->renderer, "lima", 4)) {
-        c->utgard = 1;
-        c->small_register_file = 1;
-        c->frag_highp_precision = 0;
-        c->frag_highp_range = 0;
-        if (c->frag_mediump_precision > 10) c->frag_mediump_precision = 10;
-        if (c->frag_mediump_range > 15) c->frag_mediump_range = 15;
-    }
-    /* VideoCore IV (Mesa vc4 says "VC4 V3D 2.1"; Broadcom's blob "VideoCore IV HW"). */
-    if (strstr(c->renderer, "VC4") || strstr(c->renderer, "VideoCore IV")) c->small_register_file = 1;
+    jd_gl_caps_recognise(c);
     c->ext_element_index_uint = jd_gl_has_extension("GL_OES_element_index_uint");
     c->ext_disjoint_timer_query = jd_gl_has_extension("GL_EXT_disjoint_timer_query");
     c->ext_depth_texture = jd_gl_has_extension("GL_OES_depth_texture");

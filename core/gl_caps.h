@@ -23,11 +23,22 @@ typedef struct jd_gl_caps {
     int num_extensions;
     int utgard; /* Mali-400/450 and kin by renderer string: fp16 fragments whatever the query says */
     int small_register_file; /* VideoCore IV, Mali-400/450 (by name or profile): shaders kept small */
+    int vivante;             /* Vivante GC model by renderer string (2000 for "Vivante GC2000 rev 5108" or "GC2000 core"), or 0 */
+    int adreno;              /* Adreno model by renderer string ("FD307" from Mesa: 307; "Adreno (TM) 306": 306), or 0 */
+    /* Instructions a program may have per stage, 0: no limit known. Vivante
+     * cores before GC3000 hold their programs in a 256-instruction memory
+     * (no instruction cache): a longer one fails when it is drawn. */
+    int max_program_instructions;
     char profile[16]; /* the device profile applied, or empty */
 } jd_gl_caps;
 
 /* proc returns GL entry points by name (from the platform); may be NULL. */
 jd_result jd_gl_caps_query(jd_gl_caps *caps, jd_error *err);
+/* What jade knows of a GPU by its GL_VENDOR and GL_RENDERER strings (set
+ * in caps): Mali-400/450's fp16 fragments, the small register files of
+ * those and VideoCore IV, the Vivante and Adreno models and the Vivante
+ * program limit. jd_gl_caps_query calls it; a test can too, with no GL. */
+void jd_gl_caps_recognise(jd_gl_caps *caps);
 int jd_gl_has_extension(const char *name);
 /* Whether a space-separated extension list (GL's, or EGL's from
  * eglQueryString) names `name` as a whole word; list may be NULL. The one

@@ -16,6 +16,20 @@ const jd_profile jd_profiles[] = {
      "renderbuffers and viewports 4096, cube maps 1024; fragment shaders fp16 only; Mesa lima_screen.c: "
      "8 varyings (the hardware's limit)",
      "4x multisampling in the EGL config (free on Mali-400's tile buffer)"},
+    {"vivante", "Vivante GC2000 class (NXP i.MX6 Quad/Dual; STM32MP1's GC400 and i.MX6 DualLite's GC880 below it)",
+     8192, 8192, 8192, 8192, 168, 64, 8, 8, 4, 1, 1,
+     "Mesa etnaviv_screen.c on GC2000 rev 5108 (drm-shim): 168 vertex and 64 fragment uniform vectors (Vivante's "
+     "gcmCONFIGUREUNIFORMS), 4 vertex samplers, 8K textures, fp32 shaders; the cores' own varying count (11 on "
+     "GC2000, 8 on GC400; Mesa reports 16); programs of at most 256 instructions per stage (no instruction cache "
+     "before GC3000). GC400 has no vertex samplers: jade reads its caps and draws thickness per fragment there",
+     "4x multisampling in the EGL config where the driver offers one (resolved by GC2000's resolve engine: "
+     "Vivante draws in immediate mode, the samples cost memory traffic); otherwise the pass after the frame"},
+    {"adreno3xx", "Adreno 306/320 (Snapdragon 410/600: Qualcomm's driver, Mesa freedreno)", 8192, 8192, 8192, 8192,
+     4096, 4096, 16, 16, 16, 1, 1,
+     "Mesa freedreno_screen.c for a3xx as FD307 (Adreno 306) and FD320 report under the drm-shim: 16 varyings, 16 "
+     "samplers in both stages, 8K textures, fp32 shaders (ir3 lowers mediump to 16-bit registers only from a5xx)",
+     "4x multisampling in the EGL config where the driver offers one (resolved in Adreno's on-chip GMEM); otherwise "
+     "the pass after the frame"},
 };
 const int jd_profile_count = (int)(sizeof jd_profiles / sizeof jd_profiles[0]);
 
@@ -56,5 +70,7 @@ void jd_profile_apply(const jd_profile *p, jd_gl_caps *c)
     c->ext_standard_derivatives = 0;
     /* The boards' profiles stand for their register files too. */
     if (!strcmp(p->name, "vc4") || !strcmp(p->name, "mali400")) c->small_register_file = 1;
+    /* And the Vivante class for its program memory. */
+    if (!strcmp(p->name, "vivante") && !c->max_program_instructions) c->max_program_instructions = 256;
     snprintf(c->profile, sizeof c->profile, "%s", p->name);
 }

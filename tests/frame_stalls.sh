@@ -2,7 +2,7 @@
 # The calls that stall a tile-based GPU, counted from outside the process
 # (tests/gl_count.c preloaded): no glReadPixels and no glFinish at all in
 # the frames of any mode, the light moving or still, on the generic device
-# and under the vc4 and mali400 profiles (single and dual keep their SH
+# and under the vc4, mali400, vivante and adreno3xx profiles (single and dual keep their SH
 # coefficients on the GPU as an irradiance map). `kiosk` itself never
 # finishes. Start-up makes none on llvmpipe, and exactly two with
 # --program-probe on (the check that every program draws, which GPUs get:
@@ -22,7 +22,7 @@ check() { # NAME GOT WANT
     if [ "$2" = "$3" ]; then pass=$((pass + 1)); echo "ok   $1: read-backs, glFinish = $2"
     else fail=$((fail + 1)); echo "FAIL $1: read-backs, glFinish = $2 (want $3)"; fi
 }
-for prof in "" vc4 mali400; do
+for prof in "" vc4 mali400 vivante adreno3xx; do
     p=${prof:-generic}
     check "none, $p, 20 frames" "$(count none "$prof" 30)" "0 0"
     check "start-up, $p" "$(sed -n 's/^start-up glReadPixels //p' "$tmp/out") $(sed -n 's/^start-up glFinish //p' "$tmp/out")" "0 0"

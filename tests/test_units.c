@@ -8,6 +8,7 @@
 #include "check.h"
 #include "draco_header.h"
 #include "frame_cost.h"
+#include "gl_caps.h"
 #include "material.h"
 #include "mesh.h"
 #include "sh.h"
@@ -209,6 +210,39 @@ static void test_sh(void)
     CHECK(fabs(jd_unpack_bytes(px, 0) - (127 / 255.0 + 128 / 65025.0)) < 1e-12, "mediump decode");
 }
 
+/* GPUs known by their strings: the drivers' own (Mesa's under its
+ * drm-shims, the vendors' from their documentation and users' logs). */
+static void test_recognise(void)
+{
+    static const struct { const char *vendor, *renderer; int utgard, small, vivante, adreno, limit; } gpus[] = {
+        {"lima", "Mali400", 1, 1, 0, 0, 0},
+        {"ARM", "Mali-450 MP", 1, 1, 0, 0, 0},
+        {"Broadcom", "VC4 V3D 2.1", 0, 1, 0, 0, 0},
+        {"etnaviv", "Vivante GC2000 rev 5108", 0, 0, 2000, 0, 256},
+        {"etnaviv", "Vivante GC400 rev 4652", 0, 0, 400, 0, 256},
+        {"Vivante Corporation", "GC2000 core", 0, 0, 2000, 0, 256},
+        {"etnaviv", "Vivante GC3000 rev 5450", 0, 0, 3000, 0, 0},
+        {"etnaviv", "Vivante GC7000 rev 6214", 0, 0, 7000, 0, 0},
+        {"freedreno", "FD307", 0, 0, 0, 307, 0},
+        {"Qualcomm", "Adreno (TM) 306", 0, 0, 0, 306, 0},
+        {"Mesa", "llvmpipe (LLVM 15.0.6, 256 bits)", 0, 0, 0, 0, 0},
+        {"NVIDIA Corporation", "NVIDIA H100 80GB HBM3/PCIe/SSE2", 0, 0, 0, 0, 0},
+    };
+    for (size_t i = 0; i < sizeof gpus / sizeof gpus[0]; i++) {
+        jd_gl_caps c;
+        memset(&c, 0, sizeof c);
+        snprintf(c.vendor, sizeof c.vendor, "%s", gpus[i].vendor);
+        snprintf(c.renderer, sizeof c.renderer, "%s", gpus[i].renderer);
+        c.frag_highp_precision = 23;
+        jd_gl_caps_recognise(&c);
+        CHECK(c.utgard == gpus[i].utgard && c.small_register_file == gpus[i].small && c.vivante == gpus[i].vivante &&
+                  c.adreno == gpus[i].adreno && c.max_program_instructions == gpus[i].limit,
+              "%s / %s: utgard %d small %d vivante %d adreno %d limit %d", gpus[i].vendor, gpus[i].renderer, c.utgard,
+              c.small_register_file, c.vivante, c.adreno, c.max_program_instructions);
+        CHECK((c.frag_highp_precision == 0) == gpus[i].utgard, "%s: highp %d", gpus[i].renderer, c.frag_highp_precision);
+    }
+}
+
 /* The frame-cost model on cases whose answers are published: a program
  * of one instruction over a whole 1080p screen runs at the board's fill
  * rate; a bare vertex program over a mesh of shared vertices at its
@@ -294,6 +328,7 @@ int main(void)
     test_materials();
     test_draco_header();
     test_sh();
+    test_recognise();
     test_frame_cost();
     return jd_check_summary("units");
 }
