@@ -176,7 +176,11 @@ int jd_gl_mediump_is_fp16(void)
     glUseProgram(0);
     glDeleteProgram(p);
     int linked = glGetError() == GL_NO_ERROR;
-    /* fp32: 0.5 + 0.25 = 0.75 (191); fp16: 0.25 (64). */
-    if (!linked) return -1;
-    return px[0] < 128 ? 1 : 0;
+    /* fp32: 0.5 + 0.25 = 0.75 (191); fp16: 0.25 (64). Anything else (a
+     * driver that draws nothing, as Mesa's drm-shims, reads back zeros)
+     * answers nothing. */
+    if (!linked || px[3] != 255) return -1;
+    if (px[0] >= 48 && px[0] <= 80) return 1;
+    if (px[0] >= 175 && px[0] <= 207) return 0;
+    return -1;
 }
