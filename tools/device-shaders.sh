@@ -1,9 +1,10 @@
 #!/bin/sh
 # Every jade shader program through the real device compilers, with no GPU:
-# Mesa's lima (Mali-400/450), vc4 (VideoCore IV) and panfrost (Mali
-# Midgard T720/T860) drivers built from Debian's own source package, run
-# behind Mesa's drm-shim (a preloaded library that fakes the kernel
-# device, as Mesa's shader-db does).
+# Mesa's lima (Mali-400/450), vc4 (VideoCore IV), panfrost (Mali Midgard
+# T720/T860), etnaviv (Vivante GC400, GC2000, GC3000, GC7000L) and
+# freedreno (Adreno 306, 320) drivers built from Debian's own source
+# package, run behind Mesa's drm-shim (a preloaded library that fakes the
+# kernel device, as Mesa's shader-db does).
 #
 #   tools/device-shaders.sh [--check EXPECTED] [--update EXPECTED]
 #
@@ -11,7 +12,10 @@
 # instructions, registers/threads, spills and fills, and the compiler's
 # message on failure. With --check, exits 1 when a program stops compiling
 # or linking, or its instruction count or spills grow more than 10% over
-# the committed table (tests/device-shaders.expected); --update rewrites it.
+# the committed table (tests/device-shaders.expected), or comes within 10%
+# of a hard limit of its GPU (Vivante cores without an instruction cache,
+# GC400 to GC2000, run only programs of at most 256 instructions per stage:
+# 230 is the most a program may have); --update rewrites it.
 #
 # The Mesa build (about 6 minutes on 2 cores the first time) is cached in
 # $JADE_DEVICE_CACHE (default: build-device). Exits 77 (skip) when the
@@ -68,18 +72,20 @@ fi
 
 # 2. The drivers, their compilers and the shims.
 build=$cache/mesa-build
-if [ ! -f "$build/.built" ]; then
+drivers=lima,vc4,panfrost,kmsro,etnaviv,freedreno
+# A cache built for another driver list is built again.
+if [ "$(cat "$build/.built" 2>/dev/null)" != "$drivers" ]; then
     start=$(date +%s)
     rm -rf "$build"
     # Debian's own python3 (with python3-mako), not one a version manager put first.
-    PATH=/usr/bin:$PATH meson setup "$build" "$mesa" --buildtype=release -Dgallium-drivers=lima,vc4,panfrost,kmsro \
+    PATH=/usr/bin:$PATH meson setup "$build" "$mesa" --buildtype=release -Dgallium-drivers=$drivers \
         -Dvulkan-drivers= -Dllvm=disabled -Dplatforms= -Dglx=disabled -Degl=enabled -Dgbm=enabled \
         -Dgles1=disabled -Dgles2=enabled -Dopengl=true -Dtools=drm-shim,lima,panfrost -Dshared-glapi=enabled \
         -Dvalgrind=disabled -Dlibunwind=disabled -Dzstd=disabled >"$cache/meson.log" 2>&1 ||
         { tail -20 "$cache/meson.log"; skip "meson setup failed (see $cache/meson.log)"; }
     PATH=/usr/bin:$PATH ninja -C "$build" >"$cache/ninja.log" 2>&1 || { tail -20 "$cache/ninja.log"; echo "device-shaders: Mesa build failed"; exit 1; }
     echo "device-shaders: Mesa built in $(( $(date +%s) - start )) s"
-    touch "$build/.built"
+    echo "$drivers" > "$build/.built"
 fi
 
 # 3. jade info --compile through each driver: every program of every mode
@@ -91,9 +97,10 @@ lib_dir() { dirname "$(find "$build" -name "$1" -print -quit)"; }
 egl=$(lib_dir 'libEGL.so.1') gles=$(lib_dir 'libGLESv2.so.2') glapi=$(lib_dir 'libglapi.so.0') gbm=$(lib_dir 'libgbm.so.1')
 dri=$(lib_dir 'lima_dri.so')
 shim() { find "$build" -name "lib$1_noop_drm_shim.so" -print -quit; }
-run_driver() { # NAME PROFILE SHIM ENV...
+run_driver() { # NAME PROFILE SHIM ENV... (PROFILE "-": none, the device's own limits)
     name=$1 profile=$2 lib=$3
     shift 3
+    [ "$profile" = - ] && profile=""
     # Three builds: as shipped, then with every dynamic loop at a constant
     # trip count of 1 and of 2 (jade info --unroll-loops): what one more
     # trip costs, for the frame-cost model (core/frame_cost.c).
@@ -102,7 +109,7 @@ run_driver() { # NAME PROFILE SHIM ENV...
         rc=0
         env LD_LIBRARY_PATH="$egl:$gles:$glapi:$gbm" LIBGL_DRIVERS_PATH="$dri" EGL_PLATFORM=surfaceless \
             MESA_SHADER_CACHE_DISABLE=true LD_PRELOAD="$lib" "$@" \
-            timeout 300 "$jade" info --compile --profile "$profile" --unroll-loops $unroll \
+            timeout 300 "$jade" info --compile ${profile:+--profile "$profile"} --unroll-loops $unroll \
             >"$cache/$name.$unroll.log" 2>&1 || rc=$?
         echo "$rc" > "$cache/$name.$unroll.rc"
     done
@@ -111,13 +118,29 @@ run_driver lima mali400 "$(shim lima)" LIMA_DEBUG=precompile
 run_driver vc4 vc4 "$(shim vc4)" VC4_DEBUG=shaderdb
 run_driver panfrost-t720 generic "$(shim panfrost)" PAN_MESA_DEBUG=precompile PAN_GPU_ID=720
 run_driver panfrost-t860 generic "$(shim panfrost)" PAN_MESA_DEBUG=precompile PAN_GPU_ID=860
+# Vivante: GC400 (STM32MP1) and GC2000 (i.MX6 Quad) under the vivante
+# profile, which is GC2000's limits (GC400's own, lower, still apply);
+# GC3000 (i.MX6 QuadPlus) and GC7000L (i.MX8M) with their own limits.
+for gpu in GC400 GC2000; do
+    run_driver "etnaviv-$(echo $gpu | tr A-Z a-z)" vivante "$(shim etnaviv)" ETNA_MESA_DEBUG=shaderdb ETNA_SHIM_GPU=$gpu
+done
+for gpu in GC3000 GC7000L; do
+    run_driver "etnaviv-$(echo $gpu | tr A-Z a-z)" - "$(shim etnaviv)" ETNA_MESA_DEBUG=shaderdb ETNA_SHIM_GPU=$gpu
+done
+# Adreno 306 (Snapdragon 410; the kernel and the shim call it 307 after
+# its chip id 3.0.6.0) and Adreno 320 (Snapdragon 600), their own limits.
+run_driver freedreno-a306 adreno3xx "$(shim freedreno)" FD_MESA_DEBUG=shaderdb FD_GPU_ID=307
+run_driver freedreno-a320 adreno3xx "$(shim freedreno)" FD_MESA_DEBUG=shaderdb FD_GPU_ID=320
 
 # 4. One row per driver and program. The cost columns are what the
 #    frame-cost model charges per vertex and per fragment, in each
 #    compiler's own unit: lima's instruction words; vc4's estimated cycles
 #    (its scheduler counts the texture waits a single-threaded shader
 #    stalls on) or, for a two-threaded fragment shader, its instructions;
-#    panfrost's bundles. fc: the program as built; f1, f2: with its dynamic
+#    panfrost's bundles; etnaviv's instructions (its compiler prints 32-bit
+#    words, four to an instruction); freedreno's instructions with their
+#    repeats and nops (ir3 issues one per clock, the nops being the waits
+#    its scheduler could not fill). fc: the program as built; f1, f2: with its dynamic
 #    loops at 1 and 2 trips (equal to fc where it has none).
 rows() { # DRIVER UNROLL
     awk -v drv="$1" -v rc="$(cat "$cache/$1.$2.rc")" '
@@ -131,11 +154,12 @@ rows() { # DRIVER UNROLL
         /^jade: compiling program / { flush(); label = $4 $5; vs = fs = vc = fc = extra = status = ""; spills = fills = 0; next }
         /shader compiler: / {
             line = $0; sub(/.*shader compiler: /, "", line)
-            if (line ~ /COORD/) next   # vc4: the binning copy of the vertex shader
+            if (line ~ /COORD|^BVERT/) next   # vc4, freedreno: the binning copy of the vertex shader
             n = split(line, w, /[ ,]+/)
             inst = cyc = bdl = thr = ""
             for (i = 1; i < n; i++) {
                 if (w[i + 1] == "inst") inst = w[i]
+                if (w[i + 1] == "instructions") inst = w[i] / 4   # etnaviv: words
                 if (w[i + 1] == "estimated-cycles") cyc = w[i]
                 if (w[i + 1] == "bundles") bdl = w[i]
                 if (w[i + 1] == "threads") thr = w[i]
@@ -145,6 +169,8 @@ rows() { # DRIVER UNROLL
                 if (w[i + 1] == "spills:fills") { split(w[i], sf, ":"); spills += sf[1]; fills += sf[2] }
                 if (w[i + 1] == "threads") extra = extra (extra == "" ? "" : "/") w[i] "thr"
                 if (w[i + 1] == "registers") extra = extra (extra == "" ? "" : "/") w[i] "reg"
+                if (w[i + 1] == "temps") extra = extra (extra == "" ? "" : "/") w[i] "temp"
+                if (w[i + 1] == "full" || w[i + 1] == "half") extra = extra (extra == "" ? "" : "/") w[i] w[i + 1]
                 if (w[i + 1] == "uniforms" && line !~ /VERTEX|vertex/) extra = extra (extra == "" ? "" : "/") w[i] "unif"
             }
             if (line ~ /^(VS|vertex|MESA_SHADER_VERTEX|vs)/ || line ~ /^VERT/) { vs = inst; vc = cost } else { fs = inst; fc = cost }
@@ -156,7 +182,8 @@ rows() { # DRIVER UNROLL
     ' "$cache/$1.$2.log"
 }
 table=$cache/device-shaders.table
-for d in lima vc4 panfrost-t720 panfrost-t860; do
+for d in lima vc4 panfrost-t720 panfrost-t860 etnaviv-gc400 etnaviv-gc2000 etnaviv-gc3000 etnaviv-gc7000l \
+         freedreno-a306 freedreno-a320; do
     rows "$d" 0 > "$cache/$d.rows0"
     rows "$d" 1 > "$cache/$d.rows1"
     rows "$d" 2 > "$cache/$d.rows2"
@@ -177,8 +204,11 @@ case $mode in
     check)
         # Programs are matched by driver and name, not by their place in the
         # list (a program added in the middle must not make every later one
-        # "new"); a name that repeats counts its occurrences.
+        # "new"); a name that repeats counts its occurrences. A GPU's hard
+        # limit (limit[]) is checked with 10% to spare: a program nearer
+        # than that fails whatever the committed table says.
         awk '
+            BEGIN { limit["etnaviv-gc400"] = 256; limit["etnaviv-gc2000"] = 256 }
             function name(drv, prog,   n) {
                 sub(/^[0-9]+:/, "", prog)
                 n = ++seen[FILENAME, drv, prog]
@@ -188,12 +218,22 @@ case $mode in
             {
                 key = name($1, $2); st = $NF
                 if (st != "ok") { print "device-shaders: " key ": " st; bad = 1; next }
+                if ($1 in limit) {
+                    # etnaviv prints no count for a shader it failed to compile
+                    # (the link still succeeds: the draw would fail).
+                    if ($4 == "-" || $6 == "-") { print "device-shaders: " key ": no instruction count (the compiler failed?)"; bad = 1 }
+                    if ($4 > limit[$1] * 0.9 || $6 > limit[$1] * 0.9) {
+                        printf "device-shaders: %s: VS %s, FS %s instructions: over %d, within 10%% of the %d this GPU can hold\n",
+                               key, $4, $6, limit[$1] * 0.9, limit[$1]
+                        bad = 1
+                    }
+                }
                 if (!(key in want_fs)) { print "device-shaders: " key ": new program (update the table)"; next }
                 if (want_vs[key] != "-" && $4 > want_vs[key] * 1.1) { print "device-shaders: " key ": VS " want_vs[key] " -> " $4 " instructions (over 10%)"; bad = 1 }
                 if (want_fs[key] != "-" && $6 > want_fs[key] * 1.1) { print "device-shaders: " key ": FS " want_fs[key] " -> " $6 " instructions (over 10%)"; bad = 1 }
                 if ($8 > want_sp[key]) { print "device-shaders: " key ": spills " want_sp[key] " -> " $8; bad = 1 }
             }
             END { exit bad }
-        ' "$expected" "$table" && echo "device-shaders: within the committed budget ($expected)"
+        ' "$expected" "$table" && echo "device-shaders: within the committed budget and the GPUs' limits ($expected)"
         ;;
 esac
