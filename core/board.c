@@ -29,6 +29,18 @@ const jd_board jd_boards[] = {
      "ARM Mali-T860: two arithmetic pipelines per core, one pixel per clock per core; Mesa panfrost: bundles per "
      "shader; Midgard shades an indexed draw's vertex range; RK3399 datasheet: dual-channel 32-bit DDR3-1866 "
      "(14.9 GB/s)"},
+    {"imx6q-gc2000", "Vivante GC2000 at 594 MHz (NXP i.MX6 Quad/Dual)", "vivante", "etnaviv-gc2000", 594.0,
+     JD_UNITS_SHARED, 4.0, 4.0, 1.0, 1.0, 2.0, 594.0 / 200.0, 16, 8.5,
+     "Vivante's feature database (Mesa etnaviv drm-shim, etna_viv's GPU table) for i.MX6Q's GC2000 rev 5108: 4 "
+     "unified shader cores (a vec4 instruction per clock each), 2 pixel pipes, a 16-entry vertex cache; Freescale's "
+     "i.MX6 announcement: 200 Mtri/s; NXP i.MX6DQ: GPU3D shader clock 594 MHz, 64-bit DDR3-1066 (8.5 GB/s). "
+     "Vivante draws in immediate mode: no tile-buffer resolve, bytes as counted"},
+    {"sd410-a306", "Adreno 306 at 400 MHz (Qualcomm Snapdragon 410 / APQ8016)", "adreno3xx", "freedreno-a306", 400.0,
+     JD_UNITS_SHARED, 24.0, 24.0, 1.0, 1.0, 2.0, 0.0, 16, 4.3,
+     "Qualcomm Adreno 306: 24 ALUs (scalar lanes, unified), 2 render back-ends (0.8 Gpix/s at 400 MHz); Linux "
+     "msm8916.dtsi: the GPU's top operating point 400 MHz; Mesa ir3: scalar instructions, one issue per clock, "
+     "nops and repeats counted; APQ8016: 32-bit LPDDR3 at 533 MHz (4.3 GB/s). Vertex reuse: a 16-entry FIFO "
+     "(assumed); triangle set-up and the binning pass's vertex shader not modelled"},
 };
 const int jd_board_count = (int)(sizeof jd_boards / sizeof jd_boards[0]);
 

@@ -8,20 +8,25 @@
 #include "scene.h"
 
 /* The boards whose tier draws less than jade's full quality (the
- * frame-cost model, docs/frame-cost.md): Mali-400/450 and VideoCore IV, by
- * renderer string or profile. NULL for any other GPU. */
+ * frame-cost model, docs/frame-cost.md): Mali-400/450, VideoCore IV,
+ * Vivante's cores before GC3000 and Adreno 3xx, by renderer string or
+ * profile. NULL for any other GPU. */
 static const char *tier_board(const jd_gl_caps *c)
 {
-    /* gl_caps and the profiles already tell these boards apart (their
-     * small register files): only the name is found here. */
-    if (!c->small_register_file) return NULL;
-    return c->utgard || !strcmp(c->profile, "mali400") ? "Mali-400/450" : "VideoCore IV";
+    /* gl_caps and the profiles already tell these boards apart: only the
+     * name is found here. */
+    if (c->utgard || !strcmp(c->profile, "mali400")) return "Mali-400/450";
+    if (c->small_register_file) return "VideoCore IV";
+    if ((c->vivante > 0 && c->vivante < 3000) || !strcmp(c->profile, "vivante")) return "Vivante GC400-GC2000";
+    if ((c->adreno >= 300 && c->adreno < 400) || !strcmp(c->profile, "adreno3xx")) return "Adreno 3xx";
+    return NULL;
 }
 
 /* The share of the picture's size a device's tier draws at (render_scale
  * 0): on those boards full's main pass at 1920x1080 alone takes 27 ms
- * (Mali-400 MP2) and a close-up's 24 ms (VideoCore IV), so pictures over
- * 960x540 pixels are drawn at that many and enlarged. */
+ * (Mali-400 MP2), and a close-up's 24 ms (VideoCore IV), 39 ms (i.MX6Q's
+ * GC2000) or 29 ms (Snapdragon 410's Adreno 306), so pictures over 960x540
+ * pixels are drawn at that many and enlarged. */
 static float tier_scale(const jd_renderer *r, int w, int h, const char **why)
 {
     *why = tier_board(r->d.caps);

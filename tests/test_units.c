@@ -254,12 +254,16 @@ static void test_frame_cost(void)
         "lima           0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
         "vc4            0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
         "panfrost-t860  0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
+        "etnaviv-gc2000 0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
+        "freedreno-a306 0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
         "lima           1:loop.vert+loop.frag  vs    1 fs   69 spills   0 fills   0 cost vc    1 fc   69 f1   56 f2   77 - ok\n";
     static const struct { const char *board; double mpix, mtri; } published[] = {
         {"mali400-mp2", 1000.0, 55.0}, /* ARM: 500 Mpix/s and 55 Mtri/s per pixel processor / GP at 500 MHz */
         {"mali450-mp3", 2250.0, 165.0}, /* 3 x 750 Mpix/s; 55 Mtri/s x 1.5 (clock) x 2 (vertex throughput) */
         {"vc4", 1600.0, 0.0},          /* BCM2835: 1 Gpix/s at 250 MHz, scaled to 400 */
         {"t860-mp4", 3200.0, 0.0},     /* one pixel per clock per core */
+        {"imx6q-gc2000", 1188.0, 200.0}, /* 2 pixel pipes at 594 MHz; Freescale: 200 Mtri/s */
+        {"sd410-a306", 800.0, 0.0},      /* 0.8 Gpix/s at 400 MHz */
     };
     static jd_frame_count c;
     static jd_estimate e;
