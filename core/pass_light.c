@@ -78,7 +78,8 @@ static void diffuse_step(jd_renderer *r, const diff_prog *p, const target *from,
  * by the rest of its Gaussian. A horizontal pass into diff_tmp (the
  * destination's width, the source's height), a vertical one into the
  * level's texture. Sigmas are counted in texels of the first level;
- * texture k has 2^(k/2) of those per texel. */
+ * texture k has 2^((k+1)/2) of those per texel (1, 2, 2, 4, 4): every
+ * level's Gaussian is at least one of its own texels wide. */
 void jdr_pass_diffusion(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
     (void)s;
@@ -107,7 +108,7 @@ void jdr_pass_diffusion(jd_renderer *r, const jd_scene *s, const frame_params *f
                          0.0f, box, near, "diffusion-1box");
         const target *src = k == 0 ? dst : &r->diff_lv[k - 1];
         /* First-level texels per source texel. */
-        float per_src = k == 0 ? 1.0f : (float)(1 << ((k - 1) / 2));
+        float per_src = k == 0 ? 1.0f : (float)(1 << (k / 2));
         float sig = inc / per_src; /* in source texels, also tmp's rows */
         /* The first level's blur reads the squares, sharp at their texels:
          * taps half a sigma (at least a texel) apart. Later levels read a

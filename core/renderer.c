@@ -186,7 +186,8 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
         (res = jdr_make_target(r, &r->scene, d->max_width, d->max_height, 1, 1, "frame before anti-aliasing", err)))
         goto fail;
     for (int i = 0; i < DIFF_TEXTURES; i++)
-        if ((res = jdr_make_target(r, &r->diff_lv[i], d->diffusion_size >> (i / 2), d->diffusion_size >> (i / 2), 0, 1,
+        if ((res = jdr_make_target(r, &r->diff_lv[i], d->diffusion_size >> ((i + 1) / 2),
+                                   d->diffusion_size >> ((i + 1) / 2), 0, 1,
                                "diffusion level", err)))
             goto fail;
     if ((res = jdr_build_projection_quads(r, a, err))) goto fail;

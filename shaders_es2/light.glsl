@@ -107,13 +107,14 @@ float jd_level_at(sampler2D lv, vec3 p, float n, float s, float slack, float lit
 
 // The levels' sum at light-map position p (xy, depth): Rd's weight on each
 // level's Gaussian (w, per channel) times the level's light. The two
-// narrowest levels are read texel by texel (n: their texels per side); the
-// wider ones forgive a filtered depth and take one filtered read.
+// narrowest levels are read texel by texel (n: the first's texels per side,
+// the second has half as many); the wider ones forgive a filtered depth and
+// take one filtered read.
 vec3 jd_diffused(sampler2D lv0, sampler2D lv1, sampler2D lv2, sampler2D lv3, sampler2D lv4, vec3 p, vec3 w[5],
                  vec3 s[2], float n, float slack, float lit)
 {
     return (21.0 / 20.0) * (w[0] * jd_level_at(lv0, p, n, s[0].x, slack, lit)
-                          + w[1] * jd_level_at(lv1, p, n, s[0].y, slack, lit)
+                          + w[1] * jd_level_at(lv1, p, 0.5 * n, s[0].y, slack, lit)
                           + w[2] * jd_level(texture2D(lv2, p.xy), p, s[0].z, slack, lit)
                           + w[3] * jd_level(texture2D(lv3, p.xy), p, s[1].x, slack, lit)
                           + w[4] * jd_level(texture2D(lv4, p.xy), p, s[1].y, slack, lit));
