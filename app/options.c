@@ -505,8 +505,33 @@ int jd_options_finish(jd_options *o, const char *cmd)
     return 1;
 }
 
-void jd_options_file_material(jd_options *o, const char *name, const char *cmd)
+static void file_medium(jd_options *o, const jd_file_medium *m, const char *path, const char *cmd)
 {
+    int say = !o->medium_said;
+    o->medium_said = 1;
+    if (say && m->ignored[0]) fprintf(stderr, "jade %s: %s: jade does not show %s\n", cmd, path, m->ignored);
+    if (o->has_material || !(m->flags & (JD_MEDIUM_SIGMA | JD_MEDIUM_ETA))) return;
+    if (m->flags & JD_MEDIUM_SIGMA) {
+        if (!o->has_sigma_s) memcpy(o->scene.sigma_s, m->sigma_s, sizeof m->sigma_s);
+        if (!o->has_sigma_a) memcpy(o->scene.sigma_a, m->sigma_a, sizeof m->sigma_a);
+        /* The coefficients are per millimetre of the file's own unit. */
+        if (o->scene.mm_per_unit <= 0.0f && m->mm_per_unit > 0.0f) o->scene.mm_per_unit = m->mm_per_unit;
+        o->material = "gltf";
+    }
+    if ((m->flags & JD_MEDIUM_ETA) && !o->has_eta) o->scene.eta = m->eta;
+    if (say)
+        fprintf(stderr,
+                "jade %s: %s: the material of %s: sigma_s' %.4g %.4g %.4g, sigma_a %.4g %.4g %.4g per mm, eta %.3g, "
+                "%g mm a unit\n",
+                cmd, path, m->source, (double)o->scene.sigma_s[0], (double)o->scene.sigma_s[1],
+                (double)o->scene.sigma_s[2], (double)o->scene.sigma_a[0], (double)o->scene.sigma_a[1],
+                (double)o->scene.sigma_a[2], (double)o->scene.eta, (double)o->scene.mm_per_unit);
+}
+
+void jd_options_file_material(jd_options *o, const jd_load_stats *st, const char *path, const char *cmd)
+{
+    file_medium(o, &st->medium, path, cmd);
+    const char *name = st->material;
     if (o->has_material || !name || !name[0]) return;
     const jd_material *m = jd_material_find(name);
     if (!m) {

@@ -46,6 +46,7 @@ typedef struct jd_options {
     jd_renderer_desc rdesc;
     jd_scene scene;
     int has_sigma_s, has_sigma_a, has_eta, has_budget, has_material;
+    int medium_said; /* the file's medium has been said (once a run) */
 } jd_options;
 
 enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD_OPT_KIOSK = 16, JD_OPT_REFERENCE = 32, JD_OPT_METRIC = 64,
@@ -64,10 +65,12 @@ int jd_options_finish(jd_options *o, const char *cmdname);
  * String values live in `store` (cap bytes), which must outlive `o`.
  * Returns 1, or 0 after printing one line. */
 int jd_options_parse_file(jd_options *o, int command, const char *cmdname, const char *path, char *store, size_t cap);
-/* The material a mesh file names (glTF extras.jade_material), where the
- * command line named none: applied as --material would be. Says so on
- * stderr; an unknown name is said and ignored. */
-void jd_options_file_material(jd_options *o, const char *name, const char *cmdname);
+/* What the loaded file says of its material: its medium (glTF's
+ * translucency extensions), then its extras.jade_material, which wins;
+ * the command line's --material, --sigma-s/-a, --eta and --mm-per-unit win
+ * over both. Says once on stderr what it took and what jade cannot show;
+ * an unknown jade_material is said and ignored. */
+void jd_options_file_material(jd_options *o, const jd_load_stats *st, const char *path, const char *cmdname);
 /* Parse, help and finish in one: returns -1 to go on, else the exit code. */
 int jd_options_command(jd_options *o, int command, const char *cmdname, const char *summary, int argc,
                        char **argv);

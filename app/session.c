@@ -62,7 +62,7 @@ static int load_mesh(jd_session *s, jd_options *o, const char *cmd)
         ld.allow_32bit_indices = 1; /* the renderer checks the device later */
         jd_result r = jd_mesh_load_draco(&ld, &s->arena, &s->mesh, &s->load, &err);
         if (r == JD_OK) {
-            jd_options_file_material(o, s->load.material, cmd);
+            jd_options_file_material(o, &s->load, s->mesh_path, cmd);
             return 1;
         }
         free(s->memory);
@@ -194,7 +194,7 @@ int jd_session_reload_mesh(jd_session *s, jd_options *o, const char *cmd)
         ld.path = s->mesh_path;
         ld.allow_32bit_indices = 1;
         if (jd_mesh_load_draco(&ld, &s->arena, &s->mesh, &s->load, &err) == JD_OK) {
-            jd_options_file_material(o, s->load.material, cmd);
+            jd_options_file_material(o, &s->load, s->mesh_path, cmd);
             if (make_renderer(s, o, cmd)) return attempt == 0;
         } else {
             fprintf(stderr, "jade %s: %s\n", cmd, err.msg);

@@ -14,7 +14,7 @@ extern "C" {
 #endif
 
 #define JD_DRACO_RECORD_MAGIC 0x314d444au /* "JDM1" */
-enum { JD_DRACO_HAS_NORMALS = 1, JD_DRACO_HAS_UVS = 2, JD_DRACO_HAS_MATERIAL = 4 };
+enum { JD_DRACO_HAS_NORMALS = 1, JD_DRACO_HAS_UVS = 2, JD_DRACO_HAS_MATERIAL = 4, JD_DRACO_HAS_MEDIUM = 8 };
 
 /* Followed by float pos[3*nv], [float nrm[3*nv]], [float uv[2*nv]],
  * uint32 idx[3*nf], [char material[32], NUL-terminated]. */

@@ -377,9 +377,106 @@ static int append(gltf *g, const double *xf, size_t nv, const double *pos, const
     return 0;
 }
 
+/* A number field, or def where it is absent or not a finite number. */
+static double num_or(const cJSON *o, const char *key, double def)
+{
+    const cJSON *v = get(o, key);
+    return cJSON_IsNumber(v) && isfinite(v->valuedouble) ? v->valuedouble : def;
+}
+
+/* An RGB array field clamped to [lo, hi], or def where it is not three numbers. */
+static void rgb_or(const cJSON *o, const char *key, double lo, double hi, double def, double out[3])
+{
+    const cJSON *a = get(o, key);
+    int ok = cJSON_IsArray(a) && cJSON_GetArraySize(a) == 3;
+    for (int c = 0; c < 3; c++) {
+        const cJSON *v = ok ? cJSON_GetArrayItem(a, c) : NULL;
+        double x = v && cJSON_IsNumber(v) && isfinite(v->valuedouble) ? v->valuedouble : def;
+        out[c] = x < lo ? lo : x > hi ? hi : x;
+    }
+}
+
+/* Adds `what` to a list, once: the sources joined by ", ", what jade
+ * cannot show by "; " (its items may hold commas). */
+static void note(char *buf, size_t cap, const char *sep, const char *what)
+{
+    size_t n = strlen(buf);
+    if (!strstr(buf, what)) snprintf(buf + n, cap - n, "%s%s", n ? sep : "", what);
+}
+
+/* The single-scattering albedo whose multiple-scattering albedo (what the
+ * eye sees of a thick slab) is m: the inversion the KHR_materials_volume_
+ * scatter draft gives (after Kulla and Conty 2017, "Revisiting Physically
+ * Based Shading at Imageworks"). */
+static double single_albedo(double m)
+{
+    double r = 4.09712 + 4.20863 * m - sqrt(9.59217 + 41.6808 * m + 17.7126 * m * m);
+    return 1.0 - r * r;
+}
+
+/* glTF's translucency extensions into jade's medium (docs/usage.md has the
+ * table). KHR_materials_volume gives the attenuation: sigma_t =
+ * -ln(attenuationColor) / attenuationDistance, per metre; _volume_scatter
+ * splits it by the single-scattering albedo of its multiscatterColor and
+ * reduces the scattering by scatterAnisotropy (sigma_s' = sigma_s (1 - g),
+ * the similarity relation the dipole runs on); _ior gives eta. A volume
+ * without scatter is a clear absorbing glass: nothing for jade's model to
+ * scatter, so only said. The first material with a scattering medium wins. */
+static void take_medium(gltf *g, const cJSON *mat)
+{
+    jd_file_medium *md = &g->out->medium;
+    const cJSON *ext = get(mat, "extensions");
+    if (!ext || (md->flags & JD_MEDIUM_SIGMA)) return;
+    const cJSON *vol = get(ext, "KHR_materials_volume"), *sc = get(ext, "KHR_materials_volume_scatter");
+    const cJSON *ior = get(ext, "KHR_materials_ior"), *dt = get(ext, "KHR_materials_diffuse_transmission");
+    if (cJSON_IsObject(ior)) {
+        double eta = num_or(ior, "ior", 1.5);
+        if (eta >= 1.0 && eta <= 3.0) {
+            md->eta = (float)eta;
+            md->flags |= JD_MEDIUM_ETA;
+            note(md->source, sizeof md->source, ", ", "KHR_materials_ior");
+        } else {
+            note(md->ignored, sizeof md->ignored, "; ", "an ior outside 1..3");
+        }
+    }
+    if (cJSON_IsObject(vol) && cJSON_IsObject(sc)) {
+        double dist = num_or(vol, "attenuationDistance", INFINITY), att[3], multi[3];
+        rgb_or(vol, "attenuationColor", 1e-6, 1.0, 1.0, att);
+        rgb_or(sc, "multiscatterColor", 0.0, 1.0, 0.0, multi);
+        double aniso = num_or(sc, "scatterAnisotropy", 0.0);
+        if (aniso < -0.99) aniso = -0.99;
+        if (aniso > 0.99) aniso = 0.99;
+        if (dist > 0 && isfinite(dist)) {
+            for (int c = 0; c < 3; c++) {
+                double sigma_t = -log(att[c]) / dist / 1000.0; /* per mm of the file's unit (metres) */
+                double rho = single_albedo(multi[c]);
+                if (rho < 0.0) rho = 0.0;
+                if (rho > 1.0) rho = 1.0;
+                md->sigma_s[c] = (float)(rho * sigma_t * (1.0 - aniso));
+                md->sigma_a[c] = (float)((1.0 - rho) * sigma_t);
+            }
+            md->flags |= JD_MEDIUM_SIGMA;
+            md->mm_per_unit = 1000.0f;
+            note(md->source, sizeof md->source, ", ", "KHR_materials_volume_scatter");
+        } else {
+            note(md->ignored, sizeof md->ignored, "; ", "a scattering volume with no attenuationDistance");
+        }
+        if (get(vol, "thicknessTexture")) note(md->ignored, sizeof md->ignored, "; ", "the thickness texture");
+    } else if (cJSON_IsObject(vol)) {
+        note(md->ignored, sizeof md->ignored, "; ",
+             "KHR_materials_volume without KHR_materials_volume_scatter (a clear absorbing medium: nothing scatters)");
+    }
+    if (cJSON_IsObject(dt) && !(md->flags & JD_MEDIUM_SIGMA))
+        note(md->ignored, sizeof md->ignored, "; ",
+             "KHR_materials_diffuse_transmission alone (a thin surface, no medium)");
+    if (get(ext, "KHR_materials_dispersion")) note(md->ignored, sizeof md->ignored, "; ", "dispersion");
+    if (md->ignored[0]) md->flags |= JD_MEDIUM_NOTE;
+}
+
 static void take_material(gltf *g, const cJSON *prim)
 {
     const cJSON *mat = at(&g->materials, get(prim, "material"));
+    take_medium(g, mat);
     const cJSON *name = get(get(mat, "extras"), "jade_material");
     if (g->out->material[0] || !cJSON_IsString(name)) return;
     const char *s = name->valuestring;

@@ -82,12 +82,14 @@ int jd_mesh_arrays_emit(const jd_mesh_arrays *m, jd_record_write_fn write, void 
     jd_draco_record_header h = {JD_DRACO_RECORD_MAGIC, m->nv, m->nf,
                                 (m->nrm ? (uint32_t)JD_DRACO_HAS_NORMALS : 0u) |
                                     (m->uv ? (uint32_t)JD_DRACO_HAS_UVS : 0u) |
-                                    (m->material[0] ? (uint32_t)JD_DRACO_HAS_MATERIAL : 0u)};
+                                    (m->material[0] ? (uint32_t)JD_DRACO_HAS_MATERIAL : 0u) |
+                                    (m->medium.flags ? (uint32_t)JD_DRACO_HAS_MEDIUM : 0u)};
     size_t nv = m->nv;
     if (write(user, &h, sizeof h) || write(user, m->pos, sizeof(float) * 3 * nv) ||
         (m->nrm && write(user, m->nrm, sizeof(float) * 3 * nv)) || (m->uv && write(user, m->uv, sizeof(float) * 2 * nv)) ||
         write(user, m->idx, sizeof(uint32_t) * 3 * (size_t)m->nf) ||
-        (m->material[0] && write(user, m->material, sizeof m->material)))
+        (m->material[0] && write(user, m->material, sizeof m->material)) ||
+        (m->medium.flags && write(user, &m->medium, sizeof m->medium)))
         return -1;
     return 0;
 }

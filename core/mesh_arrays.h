@@ -7,6 +7,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mesh_load.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -18,6 +20,7 @@ typedef struct jd_mesh_arrays {
     float *uv;       /* 2 per vertex, or NULL */
     uint32_t *idx;   /* 3 per face */
     char material[32]; /* a material the file asks for (glTF extras), or "" */
+    jd_file_medium medium; /* the medium the file describes (flags 0: none) */
 } jd_mesh_arrays;
 
 typedef int (*jd_record_write_fn)(void *user, const void *data, size_t n);
@@ -32,7 +35,7 @@ void jd_mesh_arrays_drop_uvs(jd_mesh_arrays *m);
 void jd_mesh_arrays_order(jd_mesh_arrays *m);
 
 /* Streams the record: header, positions, [normals], [uvs], indices,
- * [material]. 0, or -1 when the pipe closed. */
+ * [material], [medium]. 0, or -1 when the pipe closed. */
 int jd_mesh_arrays_emit(const jd_mesh_arrays *m, jd_record_write_fn write, void *user);
 
 #ifdef __cplusplus

@@ -205,6 +205,26 @@ static jd_result child_failure(const jd_load_desc *d, int status, int err_fd, jd
                    WIFEXITED(status) ? WEXITSTATUS(status) : -1);
 }
 
+/* The decoder's medium is not trusted either: strings ended and printable,
+ * coefficients finite and in the command line's ranges, or dropped. */
+static void take_medium(jd_file_medium *m)
+{
+    m->source[sizeof m->source - 1] = 0;
+    m->ignored[sizeof m->ignored - 1] = 0;
+    for (char *p = m->source; *p; p++)
+        if (*p < 32 || *p > 126) *p = '?';
+    for (char *p = m->ignored; *p; p++)
+        if (*p < 32 || *p > 126) *p = '?';
+    if (m->flags & JD_MEDIUM_SIGMA)
+        for (int c = 0; c < 3; c++)
+            if (!(m->sigma_s[c] >= 0.0f && m->sigma_s[c] <= 1000.0f && m->sigma_a[c] >= 0.0f &&
+                  m->sigma_a[c] <= 1000.0f))
+                m->flags &= ~(uint32_t)JD_MEDIUM_SIGMA;
+    if (!(m->mm_per_unit > 0.0f && m->mm_per_unit <= 1e9f)) m->mm_per_unit = 0.0f;
+    if ((m->flags & JD_MEDIUM_ETA) && !(m->eta >= 1.0f && m->eta <= 3.0f)) m->flags &= ~(uint32_t)JD_MEDIUM_ETA;
+    m->flags &= JD_MEDIUM_SIGMA | JD_MEDIUM_ETA | JD_MEDIUM_NOTE;
+}
+
 jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out,
                              jd_load_stats *stats, jd_error *err)
 {
@@ -293,6 +313,10 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
     if (r == JD_OK && (h.flags & JD_DRACO_HAS_MATERIAL)) {
         r = read_exact(&rd, st.material, sizeof st.material, &eof, err);
         st.material[sizeof st.material - 1] = 0;
+    }
+    if (r == JD_OK && (h.flags & JD_DRACO_HAS_MEDIUM)) {
+        r = read_exact(&rd, &st.medium, sizeof st.medium, &eof, err);
+        if (r == JD_OK) take_medium(&st.medium);
     }
     st.decode_ms = jd_clock_ms() - t0;
 

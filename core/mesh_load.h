@@ -29,12 +29,28 @@ typedef struct jd_load_desc {
     int format;                 /* set by the loader: the jd_mesh_format found in the file */
 } jd_load_desc;
 
+/* A scattering medium the file describes (glTF's KHR_materials_volume,
+ * KHR_materials_volume_scatter, KHR_materials_ior), in jade's terms: per
+ * channel, reduced scattering and absorption in mm^-1 of the file's own
+ * units (glTF's are metres: 1 unit = 1000 mm), and the refractive index. */
+enum { JD_MEDIUM_SIGMA = 1, JD_MEDIUM_ETA = 2, JD_MEDIUM_NOTE = 4 /* only `ignored` to say */ };
+typedef struct jd_file_medium {
+    uint32_t flags;            /* JD_MEDIUM_*: which fields the file gave */
+    float sigma_s[3];          /* reduced scattering sigma_s (1 - g) */
+    float sigma_a[3];
+    float eta;
+    float mm_per_unit;         /* the file's unit in millimetres (glTF: 1000) */
+    char source[64];           /* the extensions it came from, e.g. "KHR_materials_volume_scatter" */
+    char ignored[256];         /* what jade cannot show of the material, or "" */
+} jd_file_medium;
+
 typedef struct jd_load_stats {
     double decode_ms;   /* fork to last byte received */
     size_t file_bytes;
     uint32_t declared_faces;
     int format;         /* jd_mesh_format: Draco, glTF, OBJ, PLY or STL, by content */
     char material[32];  /* a jade material the file names (glTF extras.jade_material), or "" */
+    jd_file_medium medium; /* flags 0 when the file describes none */
 } jd_load_stats;
 
 /* Reads desc->path, or desc->size bytes at desc->data (copied into the

@@ -8,7 +8,8 @@
 # .gltf with its buffer inline (data: URI), one with a .bin beside it and a
 # .glb, each the same picture; a node's rotation placing it as the rotated
 # OBJ does; two nodes instancing it (8 triangles); extras.jade_material
-# choosing the material; hostile glTF refused by name. Then the public
+# choosing the material, and glTF's translucency extensions; hostile glTF
+# refused by name. Then the public
 # meshes in ../shared/testdata (glTF samples, plain and Draco-compressed,
 # and OBJ) render (said when absent), and `jade convert` turns each format
 # into a Draco file that renders the same.
@@ -91,6 +92,34 @@ if render "$tmp/tet_ketchup.gltf" "$tmp/k.png" && grep -q ", ketchup," "$tmp/out
 else bad "extras.jade_material: $(cat "$tmp/out")"; fi
 if "$jade" render --mesh "$tmp/tet_ketchup.gltf" --material skin1 --size 64x64 --out "$tmp/k2.png" 2>&1 | grep -q ", skin1,"; then
     ok "--material overrides the file's material"; else bad "--material does not override extras"; fi
+# glTF's translucency extensions: the medium they describe, in metres, becomes
+# jade's (docs/usage.md has the mapping); extras.jade_material and
+# --material win; what jade cannot show is said.
+gltf_mat() { # MATERIAL_JSON: the tetrahedron, a twentieth of a metre across, with that material
+    gltf_json ',"uri":"tet.bin"' '{"mesh":0,"scale":[0.05,0.05,0.05]}' PLACEHOLDER |
+        sed "s|\"materials\":\[{\"extras\":{\"jade_material\":\"PLACEHOLDER\"}}\]|\"materials\":[$1]|"
+}
+vol='"KHR_materials_volume":{"attenuationDistance":0.01,"attenuationColor":[0.5,0.3,0.2],"thicknessTexture":{"index":0}}'
+scat='"KHR_materials_volume_scatter":{"multiscatterColor":[0.9,0.6,0.4],"scatterAnisotropy":0.2}'
+gltf_mat "{\"extensions\":{$vol,$scat,\"KHR_materials_ior\":{\"ior\":1.4}}}" > "$tmp/tet_volume.gltf"
+if render "$tmp/tet_volume.gltf" "$tmp/v.png" && grep -q ", gltf," "$tmp/out" &&
+   grep -q "sigma_s' 0.05534 0.09162 0.1095, sigma_a 0.0001451 0.005878 0.02401 per mm, eta 1.4, 1000 mm a unit" "$tmp/out" &&
+   grep -q "does not show the thickness texture" "$tmp/out"; then
+    ok "KHR_materials_volume + _volume_scatter + _ior: $(grep 'the material of' "$tmp/out" | head -c 200)"
+else bad "glTF volume material: $(cat "$tmp/out")"; fi
+gltf_mat "{\"extensions\":{$vol,$scat},\"extras\":{\"jade_material\":\"ketchup\"}}" > "$tmp/tet_volume_k.gltf"
+if render "$tmp/tet_volume_k.gltf" "$tmp/vk.png" && grep -q ", ketchup," "$tmp/out"; then ok "extras.jade_material wins over the extensions"
+else bad "extras over extensions: $(cat "$tmp/out")"; fi
+if "$jade" render --mesh "$tmp/tet_volume.gltf" --material skin1 --size 64x64 --out "$tmp/v2.png" 2>&1 | grep -q ", skin1,"; then
+    ok "--material wins over the extensions"; else bad "--material does not override the extensions"; fi
+gltf_mat "{\"extensions\":{$vol}}" > "$tmp/tet_clear.gltf"
+if render "$tmp/tet_clear.gltf" "$tmp/c.png" && grep -q ", marble," "$tmp/out" && grep -q "nothing scatters" "$tmp/out"; then
+    ok "a clear absorbing volume keeps the default material, and says why"
+else bad "clear volume: $(cat "$tmp/out")"; fi
+gltf_mat "{\"extensions\":{\"KHR_materials_volume\":{\"attenuationDistance\":1e-12,\"attenuationColor\":[1e-9,0,\"x\"]},$scat}}" > "$tmp/tet_absurd.gltf"
+if render "$tmp/tet_absurd.gltf" "$tmp/a.png" && grep -q ", marble," "$tmp/out"; then
+    ok "coefficients past jade's range are not taken (marble)"
+else bad "absurd volume: $(cat "$tmp/out")"; fi
 # Hostile glTF: each refused with its reason, exit 1.
 refuse() {
     printf '%s' "$2" > "$tmp/$1"

@@ -47,7 +47,7 @@ open(sys.argv[1], 'wb').write(b'solid binary'.ljust(80, b' ') + struct.pack('<I'
                               struct.pack('<12fH', 0, 0, -1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0))
 PY
 # glTF: the tetrahedron as .gltf (inline buffer, a node with TRS, a
-# material's extras), as .glb, and as a .glb whose primitive is the Draco
+# material's extras; another with the translucency extensions), as .glb, and as a .glb whose primitive is the Draco
 # encoding above (KHR_draco_mesh_compression), for both the reader and the load.
 python3 - "$tmp" "$c" <<'PY'
 import sys, struct, json, base64
@@ -82,8 +82,15 @@ draco = glb(doc(None, len(drc), [{"buffer": 0, "byteLength": len(drc)}],
                  "extensions": {"KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}}},
                 {"extensionsUsed": ["KHR_draco_mesh_compression"], "extensionsRequired": ["KHR_draco_mesh_compression"]}),
             drc)
+# A material with glTF's translucency extensions.
+medium = {"KHR_materials_volume": {"attenuationDistance": 0.01, "attenuationColor": [0.5, 0.3, 0.2]},
+          "KHR_materials_volume_scatter": {"multiscatterColor": [0.9, 0.6, 0.4], "scatterAnisotropy": 0.2},
+          "KHR_materials_ior": {"ior": 1.4}}
+volume = doc('data:application/octet-stream;base64,' + base64.b64encode(pos + idx).decode(), 72, plain_views,
+             plain_acc, plain_prim, {"materials": [{"extensions": medium}]})
 for d in ('fuzz_gltf', 'fuzz_mesh_load'):
     open(f'{c}/{d}/tet.gltf', 'wb').write(inline)
+    open(f'{c}/{d}/tet_volume.gltf', 'wb').write(volume)
     open(f'{c}/{d}/tet.glb', 'wb').write(binary)
     open(f'{c}/{d}/tet_draco.glb', 'wb').write(draco)
 PY
