@@ -285,6 +285,13 @@ static int read_accessor(gltf *g, const cJSON *index, const char *what, int comp
         size_t size, stride;
         if (view_bytes(g, bv, &data, &size, &stride)) { free(v); return -1; }
         if (!stride) stride = elem;
+        /* Elements closer than their own size would overlap: the spec
+         * forbids it, and reading them would mix one into the next. */
+        if (stride < elem) {
+            free(v);
+            return fail(g, "glTF %s accessor's bufferView has a byteStride of %zu, smaller than its %zu-byte elements",
+                        what, stride, elem);
+        }
         if (off + (double)stride * (double)(elems - 1) + (double)elem > (double)size) {
             free(v);
             return fail(g, "glTF %s accessor reaches past the end of its bufferView", what);

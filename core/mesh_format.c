@@ -1,6 +1,7 @@
 #include "mesh_format.h"
 
 #include <string.h>
+#include <strings.h>
 
 #include "draco_header.h"
 
@@ -42,10 +43,23 @@ static jd_result peek_ply(const uint8_t *buf, size_t n, const char *name, uint32
 {
     char line[256];
     size_t at = 0, limit = n < (64u << 10) ? n : (64u << 10);
+    int has_faces = 0, has_strips = 0;
     while (at < limit) {
         size_t k = line_at(buf, n, at, line, sizeof line);
         at += k + 1;
-        if (!strcmp(line, "end_header")) return JD_OK;
+        if (!strncmp(line, "element face ", 13)) has_faces = 1;
+        if (!strncmp(line, "element tristrips ", 18)) has_strips = 1;
+        if (!strcmp(line, "end_header")) {
+            /* Said here, in words, rather than by the decoder's internals. */
+            if (!has_faces && has_strips)
+                return jd_fail(err, JD_ERR_UNSUPPORTED,
+                               "%s: PLY stores its surface as triangle strips (element tristrips), which jade does "
+                               "not read yet; save it with faces", name);
+            if (!has_faces)
+                return jd_fail(err, JD_ERR_FORMAT, "%s: PLY has vertices but no faces (a point cloud): jade draws "
+                               "surfaces", name);
+            return JD_OK;
+        }
         if (!strncmp(line, "element vertex ", 15) && !parse_count(line + 15, vertices))
             return jd_fail(err, JD_ERR_FORMAT, "%s: PLY vertex count '%s' is not a count", name, line + 15);
         if (!strncmp(line, "element face ", 13) && !parse_count(line + 13, faces))
@@ -113,6 +127,15 @@ jd_result jd_mesh_peek(const uint8_t *buf, size_t n, const char *name, jd_mesh_f
     if (looks_like_obj(buf, n)) {
         *format = JD_FORMAT_OBJ;
         return JD_OK;
+    }
+    /* A binary STL whose count does not fit its size: whole 50-byte
+     * triangles after the header, or the name says STL. */
+    size_t len = strlen(name);
+    if (n >= 84 && ((n - 84) % 50 == 0 || (len > 4 && !strcasecmp(name + len - 4, ".stl")))) {
+        uint32_t count = (uint32_t)buf[80] | (uint32_t)buf[81] << 8 | (uint32_t)buf[82] << 16 | (uint32_t)buf[83] << 24;
+        return jd_fail(err, JD_ERR_FORMAT,
+                       "%s: a binary STL with a wrong triangle count: its header says %u, its %zu bytes hold %zu%s",
+                       name, count, n, (n - 84) / 50, (n - 84) % 50 ? " and a part of one" : "");
     }
     return jd_fail(err, JD_ERR_FORMAT,
                    "%s: not a mesh jade reads: no Draco, glTF, PLY or STL header and no OBJ vertex lines", name);

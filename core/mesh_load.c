@@ -335,6 +335,27 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
                         d.path, i / 3, idx32[i], h.num_vertices);
             goto fail;
         }
+    /* A mesh with no area (every position equal, a glTF node scaled to
+     * zero, an accessor with no bufferView) would draw nothing and exit 0. */
+    double most = 0.0;
+    for (uint32_t f = 0; f < h.num_faces && !(most > 0.0); f++) {
+        const float *p0 = out->positions + 3 * (size_t)idx32[3 * f], *p1 = out->positions + 3 * (size_t)idx32[3 * f + 1],
+                    *p2 = out->positions + 3 * (size_t)idx32[3 * f + 2];
+        double e1[3], e2[3];
+        for (int c = 0; c < 3; c++) {
+            e1[c] = (double)p1[c] - (double)p0[c];
+            e2[c] = (double)p2[c] - (double)p0[c];
+        }
+        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
+        most = cx * cx + cy * cy + cz * cz;
+    }
+    if (most == 0.0) { /* NaN: the finite check below says so */
+        r = jd_fail(err, JD_ERR_FORMAT,
+                    "%s: the mesh has no area: %s %u triangle%s degenerate (every position equal, a node scaled "
+                    "to zero, or positions with no data); refused",
+                    d.path, h.num_faces == 1 ? "its" : "all its", h.num_faces, h.num_faces == 1 ? " is" : "s are");
+        goto fail;
+    }
     r = jd_mesh_set_indices(out, idx32, 3 * h.num_faces, d.allow_32bit_indices, a, err);
     if (r) {
         if (r == JD_ERR_UNSUPPORTED) {

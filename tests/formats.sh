@@ -135,6 +135,22 @@ refuse short.gltf "$(gltf_json ',"uri":"tet.bin"' | sed 's/"byteLength":24/"byte
 refuse points.gltf "$(gltf_json ',"uri":"tet.bin"' | sed 's/"indices":1/"indices":1,"mode":0/')" "no triangles"
 refuse badjson.gltf '{"asset":{"version":"2.0"},"meshes":[' "does not parse"
 refuse index.gltf "$(gltf_json ',"uri":"tet.bin"' | sed 's/"count":4,/"count":2,/')" "past its"
+refuse stride.gltf "$(gltf_json ',"uri":"tet.bin"' | sed 's/"byteLength":48}/"byteLength":48,"byteStride":4}/')" "byteStride of 4, smaller than its 12-byte elements"
+refuse flat.gltf "$(gltf_json ',"uri":"tet.bin"' '{"mesh":0,"scale":[0,0,0]}')" "has no area"
+refuse nodata.gltf "$(gltf_json ',"uri":"tet.bin"' | sed 's/{"bufferView":0,"componentType":5126/{"componentType":5126/')" "has no area"
+# The other formats' gaps: said in words, exit 1.
+refuse_file() { # NAME WANT: $tmp/NAME exists
+    if "$jade" render --mesh "$tmp/$1" --size 64x64 --out "$tmp/r.png" > "$tmp/out" 2>&1; then bad "$1 was accepted"
+    elif grep -q "$2" "$tmp/out"; then ok "$1 refused: $(head -c 200 "$tmp/out" | head -1)"
+    else bad "$1: $(cat "$tmp/out")"; fi
+}
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n' > "$tmp/cloud.ply"
+refuse_file cloud.ply "no faces (a point cloud)"
+printf 'v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n' > "$tmp/flat.obj"
+refuse_file flat.obj "has no area"
+# The binary tetrahedron with a count of 5 in its header (it holds 4).
+{ head -c 80 "$tmp/tet_binary.stl"; printf '\005\000\000\000'; tail -c +85 "$tmp/tet_binary.stl"; } > "$tmp/count.stl"
+refuse_file count.stl "binary STL with a wrong triangle count: its header says 5, its 284 bytes hold 4"
 # jade convert: every format to Draco, rendering as the original does.
 for f in tet.ply tet.obj tet_binary.stl tet_inline.gltf tet.glb tet_turned.gltf; do
     if ! "$jade" convert "$tmp/$f" "$tmp/conv_$f.drc" > "$tmp/out" 2>&1; then bad "convert $f: $(cat "$tmp/out")"; continue; fi
