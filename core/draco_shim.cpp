@@ -1,5 +1,6 @@
 // The only C++ in jade: libdraco 1.5.5 has no C API.
 #include "draco_shim.h"
+#include "ply_strips.h"
 
 #include <cctype>
 #include <cmath>
@@ -110,6 +111,22 @@ std::unique_ptr<draco::Mesh> read_mesh(draco::DecoderBuffer *buffer, int format,
 {
     draco::Status status;
     std::unique_ptr<draco::Mesh> mesh;
+    char *faces = nullptr;
+    draco::DecoderBuffer with_faces;
+    if (format == JD_FORMAT_PLY) {
+        size_t faces_n = 0;
+        char msg[200];
+        int k = jd_ply_strips_to_faces(buffer->data_head(), static_cast<size_t>(buffer->remaining_size()), &faces,
+                                       &faces_n, msg, sizeof msg);
+        if (k < 0) {
+            set_err(err, errlen, msg);
+            return nullptr;
+        }
+        if (k > 0) {
+            with_faces.Init(faces, faces_n);
+            buffer = &with_faces;
+        }
+    }
     if (format == JD_FORMAT_OBJ || format == JD_FORMAT_PLY) {
         mesh.reset(new draco::Mesh());
         status = format == JD_FORMAT_OBJ ? draco::ObjDecoder().DecodeFromBuffer(buffer, mesh.get())
@@ -141,6 +158,7 @@ std::unique_ptr<draco::Mesh> read_mesh(draco::DecoderBuffer *buffer, int format,
         status = result.status();
         if (result.ok()) mesh = std::move(result).value();
     }
+    std::free(faces);
     if (!status.ok() || !mesh) {
         char msg[256];
         std::snprintf(msg, sizeof msg, "%s could not decode it: %s", format_name(format), status.error_msg());

@@ -51,11 +51,9 @@ static jd_result peek_ply(const uint8_t *buf, size_t n, const char *name, uint32
         if (!strncmp(line, "element tristrips ", 18)) has_strips = 1;
         if (!strcmp(line, "end_header")) {
             /* Said here, in words, rather than by the decoder's internals. */
-            if (!has_faces && has_strips)
-                return jd_fail(err, JD_ERR_UNSUPPORTED,
-                               "%s: PLY stores its surface as triangle strips (element tristrips), which jade does "
-                               "not read yet; save it with faces", name);
-            if (!has_faces)
+            /* Strips are turned into faces in the decoder (ply_strips.c):
+             * their count is known once they are read. */
+            if (!has_faces && !has_strips)
                 return jd_fail(err, JD_ERR_FORMAT, "%s: PLY has vertices but no faces (a point cloud): jade draws "
                                "surfaces", name);
             return JD_OK;

@@ -146,6 +146,21 @@ refuse_file() { # NAME WANT: $tmp/NAME exists
 }
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n' > "$tmp/cloud.ply"
 refuse_file cloud.ply "no faces (a point cloud)"
+# The tetrahedron as triangle strips (-1 between them), ASCII and binary,
+# as the Stanford repository's scans are stored: the same picture as its faces.
+strip_hdr() { printf 'ply\nformat %s 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n' "$1"; }
+{ strip_hdr ascii; printf '0 0 0\n1 0 0\n0 1 0\n0 0 1\n15 0 2 1 -1 0 1 3 -1 0 3 2 -1 1 2 3\n'; } > "$tmp/strips_ascii.ply"
+{ strip_hdr binary_little_endian
+  for c in 0 0 0 1 0 0 0 1 0 0 0 1; do if [ "$c" = 1 ]; then printf '\000\000\200\077'; else printf '\000\000\000\000'; fi; done
+  le32 15; for i in 0 2 1 -1 0 1 3 -1 0 3 2 -1 1 2 3; do le32 "$i"; done; } > "$tmp/strips_binary.ply"
+for f in strips_ascii.ply strips_binary.ply; do
+    if ! render "$tmp/$f" "$tmp/$f.png"; then bad "$f: $(cat "$tmp/out")"; continue; fi
+    rmse=$("$jade" metric "$tmp/$f.png" "$tmp/tet.ply.png" | sed -n 's/.*"rmse": \([0-9.]*\).*/\1/p')
+    if awk "BEGIN { exit !($rmse < 0.001) }" && grep -q ": 4 triangles" "$tmp/out"; then ok "$f (tristrips): 4 triangles, the same picture as the faces (RMSE $rmse)"
+    else bad "$f: RMSE $rmse against the PLY's faces; $(cat "$tmp/out")"; fi
+done
+{ strip_hdr ascii; printf '0 0 0\n1 0 0\n0 1 0\n0 0 1\n5 0 2 1 9 3\n'; } > "$tmp/strips_bad.ply"
+refuse_file strips_bad.ply "tristrips refer to a vertex past the vertex count"
 printf 'v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n' > "$tmp/flat.obj"
 refuse_file flat.obj "has no area"
 # The binary tetrahedron with a count of 5 in its header (it holds 4).

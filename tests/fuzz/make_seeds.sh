@@ -40,6 +40,15 @@ PY
 # The other mesh formats, for the sandboxed load: OBJ, PLY, ASCII and binary STL.
 cp "$tmp/tet.obj" "$c/fuzz_mesh_load/tet.obj"
 printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' > "$c/fuzz_mesh_load/tet.ply"
+printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n7 0 2 1 3 -1 1 2\n' > "$c/fuzz_mesh_load/strips.ply"
+python3 - "$c/fuzz_mesh_load/strips_binary.ply" <<'PY'
+import struct, sys
+h = (b'ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n'
+     b'element tristrips 1\nproperty list int int vertex_indices\nend_header\n')
+s = [0, 2, 1, 3, -1, 1, 2, 3]
+open(sys.argv[1], 'wb').write(h + struct.pack('<12f', 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1) + struct.pack('<i', len(s)) +
+                              struct.pack('<%di' % len(s), *s))
+PY
 printf 'solid t\nfacet normal 0 0 -1\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid t\n' > "$c/fuzz_mesh_load/tri.stl"
 python3 - "$c/fuzz_mesh_load/tri_binary.stl" <<'PY'
 import struct, sys
