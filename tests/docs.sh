@@ -23,6 +23,8 @@ cmake -S . -B build-aarch64 -DCMAKE_TOOLCHAIN_FILE=toolchains/aarch64-linux-gnu.
 cmake --build build-aarch64|tools/cross-test.sh|cmake --build "$dir"
 cmake -S . -B build-board -DCMAKE_TOOLCHAIN_FILE=toolchains/aarch64-linux-gnu.cmake -DJADE_SYSROOT=/path/to/sysroot|tools/cross-test.sh|cmake -S . -B build-aarch64-sysroot -DCMAKE_TOOLCHAIN_FILE=toolchains/aarch64-linux-gnu.cmake -DJADE_SYSROOT="$sysroot"
 ./tools/package.sh|tests/package.sh|deb=$("$src/tools/package.sh"
+./tools/package.sh build-pkg-arm64 --arch arm64|tools/cross-test.sh|deb=$(./tools/package.sh "build-pkg-$arch" --arch "$arch"
+./tools/package.sh build-pkg-armhf --arch armhf|tools/cross-test.sh|deb=$(./tools/package.sh "build-pkg-$arch" --arch "$arch"
 apt install ./build-pkg/jade_*.deb|tests/package.sh|dpkg-deb -x "$deb" "$root"
 sudoedit /etc/jade/kiosk.conf|tests/package.sh|if grep -qx /etc/jade/kiosk.conf "$root/DEBIAN/conffiles"
 systemctl enable --now jade-kiosk|tests/package.sh|if systemd-analyze verify --man=no "$tmp/unit/jade-kiosk.service"'

@@ -2,7 +2,8 @@
 # Cross-builds jade for aarch64 and armhf with the toolchain files and runs
 # the GL-free tests (units, the Draco reference comparison, hostile inputs,
 # DRM selection, the image metric)
-# under qemu-user. --sizes also reports the stripped size of the aarch64
+# under qemu-user; then builds each board's .deb (tools/package.sh --arch)
+# and runs the unpacked program's --help, convert and metric under qemu. --sizes also reports the stripped size of the aarch64
 # program with Draco linked dynamically and statically.
 #
 # An architecture whose packages could not be set up (setup-cross.sh says
@@ -27,6 +28,23 @@ for arch in arm64 armhf; do
     cmake --build "$dir" -j"$jobs" >/dev/null
     file "$dir/jade" | sed 's/, BuildID.*//'
     (cd "$dir" && ctest --output-on-failure -R '^(units|draco_reference|bad_inputs|drm_select|metric)$')
+    # The board's package: built, unpacked into a throwaway root, and its
+    # program's GL-free commands run under qemu-user from there.
+    echo "== $triple package"
+    deb=$(./tools/package.sh "build-pkg-$arch" --arch "$arch" | tail -1)
+    echo "$(basename "$deb"): $(wc -c < "$deb") bytes, Architecture: $(dpkg-deb -f "$deb" Architecture), Depends: $(dpkg-deb -f "$deb" Depends)"
+    root=$(mktemp -d)
+    dpkg-deb -x "$deb" "$root"
+    case $arch in arm64) qemu=qemu-aarch64 ;; armhf) qemu=qemu-arm ;; esac
+    "$qemu" "$root/usr/bin/jade" --help > "$root/help.txt"
+    grep -q "render a mesh in translucent material" "$root/help.txt" || { echo "packaged jade --help says: $(head -3 "$root/help.txt")"; exit 1; }
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' > "$root/tet.obj"
+    "$qemu" "$root/usr/bin/jade" convert "$root/tet.obj" "$root/tet.drc"
+    [ "$(head -c 5 "$root/tet.drc")" = DRACO ] || { echo "packaged jade convert wrote no Draco file"; exit 1; }
+    m=$("$qemu" "$root/usr/bin/jade" metric tests/golden/bunny_full_marble.png tests/golden/bunny_full_marble.png)
+    echo "$m" | grep -q '"rmse": 0.000000' || { echo "packaged jade metric says: $m"; exit 1; }
+    echo "packaged jade under $qemu: --help, convert (tet.obj -> $(wc -c < "$root/tet.drc") bytes of Draco), metric (RMSE 0 against itself)"
+    rm -rf "$root"
 done
 # The board-sysroot path: a sysroot made only of Debian's arm64 packages
 # (what a Raspberry Pi OS image holds), no multiarch involved.
