@@ -15,7 +15,7 @@ static void usage(FILE *f)
             "usage: jade <command> [options]\n\n"
             "commands:\n"
             "  render   render a mesh in translucent material to a PNG\n"
-            "  bench    time none/single/dual with an orbiting light, print JSON\n"
+            "  bench    time every mode (none, single, dual, full) with an orbiting light, print JSON\n"
             "  view     an X11 window with the scene, under a device profile if asked\n"
             "  kiosk    fullscreen on DRM/KMS (no desktop), frame statistics at the end\n"
             "  info     print the GL device's limits and usable extensions\n"
