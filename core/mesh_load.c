@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/resource.h>
@@ -58,6 +59,17 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
                        int err_fd)
 {
     signal(SIGPIPE, SIG_IGN);
+#ifndef JD_ASAN /* a sanitizer's report in the child is wanted where it runs */
+    /* What the libraries print as they fail (glibc's abort messages, which
+     * it writes to the terminal unless told otherwise; a reader's own
+     * chatter) is not jade's one line: the parent says what happened. */
+    setenv("LIBC_FATAL_STDERR_", "1", 1);
+    int null_fd = open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (null_fd >= 0) {
+        dup2(null_fd, 2);
+        close(null_fd);
+    }
+#endif
     struct rlimit cpu = {(rlim_t)(d->timeout_ms / 1000 + 2), (rlim_t)(d->timeout_ms / 1000 + 3)};
     setrlimit(RLIMIT_CPU, &cpu);
     /* A wall-clock bound on the child's whole life, streaming and clean-up
