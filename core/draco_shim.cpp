@@ -1,5 +1,6 @@
 // The only C++ in jade: libdraco 1.5.5 has no C API.
 #include "draco_shim.h"
+#include "obj_check.h"
 #include "ply_strips.h"
 
 #include <cctype>
@@ -125,6 +126,14 @@ std::unique_ptr<draco::Mesh> read_mesh(draco::DecoderBuffer *buffer, int format,
         if (k > 0) {
             with_faces.Init(faces, faces_n);
             buffer = &with_faces;
+        }
+    }
+    if (format == JD_FORMAT_OBJ) {
+        char msg[200];
+        if (jd_obj_check(buffer->data_head(), static_cast<size_t>(buffer->remaining_size()), msg, sizeof msg)) {
+            std::free(faces);
+            set_err(err, errlen, msg);
+            return nullptr;
         }
     }
     if (format == JD_FORMAT_OBJ || format == JD_FORMAT_PLY) {

@@ -163,6 +163,15 @@ done
 refuse_file strips_bad.ply "tristrips refer to a vertex past the vertex count"
 printf 'v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n' > "$tmp/flat.obj"
 refuse_file flat.obj "has no area"
+# OBJ faces whose numbers libdraco would index with unchecked (found by
+# fuzzing: they crashed its reader, contained by the decoder's child).
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//11\n' > "$tmp/normal_past.obj"
+refuse_file normal_past.obj "OBJ line 5: a face refers to normal 11, but the file has 1"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1-1\n' > "$tmp/corner.obj"
+refuse_file corner.obj "OBJ line 5: face corner '3/1-1' is not v, v/vt, v//vn or v/vt/vn"
+printf 'f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 4\n' > "$tmp/faces_first.obj"
+if render "$tmp/faces_first.obj" "$tmp/ff.png" && grep -q ": 2 triangles" "$tmp/out"; then ok "an OBJ with a face before its vertices still reads (as libdraco reads it)"
+else bad "faces_first.obj: $(cat "$tmp/out")"; fi
 # The binary tetrahedron with a count of 5 in its header (it holds 4).
 { head -c 80 "$tmp/tet_binary.stl"; printf '\005\000\000\000'; tail -c +85 "$tmp/tet_binary.stl"; } > "$tmp/count.stl"
 refuse_file count.stl "binary STL with a wrong triangle count: its header says 5, its 284 bytes hold 4"

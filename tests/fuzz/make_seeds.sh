@@ -39,6 +39,10 @@ for n, b in meshes.items():
 PY
 # The other mesh formats, for the sandboxed load: OBJ, PLY, ASCII and binary STL.
 cp "$tmp/tet.obj" "$c/fuzz_mesh_load/tet.obj"
+# Faces with numbers past their arrays and a malformed corner: libdraco's
+# OBJ reader crashed on such (core/obj_check.c names them now).
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//11\n' > "$c/fuzz_mesh_load/normal_past.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1-1\n' > "$c/fuzz_mesh_load/corner.obj"
 printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' > "$c/fuzz_mesh_load/tet.ply"
 printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n7 0 2 1 3 -1 1 2\n' > "$c/fuzz_mesh_load/strips.ply"
 python3 - "$c/fuzz_mesh_load/strips_binary.ply" <<'PY'

@@ -1,0 +1,23 @@
+/* OBJ faces checked before libdraco's reader sees them: libdraco 1.5.5
+ * indexes its arrays with a face's numbers unchecked (a normal index past
+ * the normals, or a corner like "4/1-1", crashed it in fuzzing), so a bad
+ * index is named here, with its line. Internal: runs in the decoder's
+ * child process. */
+#ifndef JD_OBJ_CHECK_H
+#define JD_OBJ_CHECK_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* 0: every face corner is v, v/vt, v//vn or v/vt/vn, each index naming an
+ * element defined before its line; -1: err says the first that is not. */
+int jd_obj_check(const char *data, size_t n, char *err, size_t errlen);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
