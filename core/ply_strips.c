@@ -47,6 +47,26 @@ static int64_t read_int(const uint8_t *p, int size, int sign, int order)
     return (int64_t)v;
 }
 
+/* A decimal integer at *p, after blanks, never reading past n (the file is
+ * not NUL-terminated); 0 where there is none. */
+static int read_decimal(const uint8_t *d, size_t n, size_t *p, int64_t *v)
+{
+    size_t i = *p;
+    while (i < n && (d[i] == ' ' || d[i] == '\t' || d[i] == '\r' || d[i] == '\n')) i++;
+    int neg = i < n && d[i] == '-';
+    if (i < n && (d[i] == '-' || d[i] == '+')) i++;
+    size_t start = i;
+    int64_t x = 0;
+    while (i < n && d[i] >= '0' && d[i] <= '9') {
+        if (x < (int64_t)1 << 40) x = x * 10 + (d[i] - '0');
+        i++;
+    }
+    if (i == start) return 0;
+    *v = neg ? -x : x;
+    *p = i;
+    return 1;
+}
+
 /* Output that grows as needed, up to a bound set from the input. */
 typedef struct out_buf { char *p; size_t n, cap; } out_buf;
 
@@ -166,6 +186,7 @@ int jd_ply_strips_to_faces(const char *data, size_t n, char **out, size_t *out_n
     int k;
     at = 0;
     int in_strips = 0;
+    size_t face_at = 0;
     while (at < body) {
         size_t e = at;
         while (d[e] != '\n') e++;
@@ -173,6 +194,7 @@ int jd_ply_strips_to_faces(const char *data, size_t n, char **out, size_t *out_n
         size_t len = e + 1 - at;
         if (len >= 18 && !strncmp(line, "element tristrips", 17)) {
             in_strips = 1;
+            face_at = o.n + 13; /* where the count's digits go */
             /* The face count is written once known: a fixed-width field. */
             k = snprintf(hdr, sizeof hdr, "element face %020llu\nproperty list uchar int vertex_indices\n", 0ULL);
             if (put(&o, hdr, (size_t)k)) goto full;
@@ -190,11 +212,7 @@ int jd_ply_strips_to_faces(const char *data, size_t n, char **out, size_t *out_n
     for (uint64_t s = 0; s < st->count; s++) {
         int64_t len;
         if (format == ASCII) {
-            char *end;
-            while (p < n && (d[p] == ' ' || d[p] == '\t' || d[p] == '\r' || d[p] == '\n')) p++;
-            if (p >= n) goto short_strips;
-            len = strtoll(data + p, &end, 10);
-            p = (size_t)(end - data);
+            if (!read_decimal(d, n, &p, &len)) goto short_strips;
         } else {
             if (n - p < (size_t)st->list_count) goto short_strips;
             len = read_int(d + p, st->list_count, 0, format);
@@ -206,10 +224,7 @@ int jd_ply_strips_to_faces(const char *data, size_t n, char **out, size_t *out_n
         for (int64_t i = 0; i < len; i++) {
             int64_t v;
             if (format == ASCII) {
-                char *end;
-                v = strtoll(data + p, &end, 10);
-                if (end == data + p) goto short_strips;
-                p = (size_t)(end - data);
+                if (!read_decimal(d, n, &p, &v)) goto short_strips;
             } else {
                 if (n - p < (size_t)st->list_item) goto short_strips;
                 v = read_int(d + p, st->list_item, st->list_signed, format);
@@ -239,11 +254,9 @@ int jd_ply_strips_to_faces(const char *data, size_t n, char **out, size_t *out_n
     }
     /* The face count into its fixed-width field. */
     {
-        char *f = strstr(o.p, "element face ");
-        if (!f) goto full; /* 20 digits hold any 64-bit count */
-        char num[24];
+        char num[24]; /* 20 digits hold any 64-bit count */
         snprintf(num, sizeof num, "%020llu", (unsigned long long)faces);
-        memcpy(f + 13, num, 20);
+        memcpy(o.p + face_at, num, 20);
     }
     *out = o.p;
     *out_n = o.n;
