@@ -8,7 +8,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 c=$here/corpus
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-mkdir -p "$c/fuzz_draco_header" "$c/fuzz_metadata" "$c/fuzz_mesh_load" "$c/fuzz_gltf" "$c/fuzz_image" "$c/fuzz_options"
+mkdir -p "$c/fuzz_draco_header" "$c/fuzz_metadata" "$c/fuzz_mesh_load" "$c/fuzz_mesh_text" "$c/fuzz_gltf" "$c/fuzz_image" "$c/fuzz_options"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1/1 3/3/1 2/2/1\nf 1/1/1 2/2/1 4/3/1\nf 1/1/1 4/3/1 3/2/1\nf 2/2/1 3/3/1 4/1/1\n' > "$tmp/tet.obj"
 draco_encoder -i "$tmp/tet.obj" -o "$tmp/seq.drc" -cl 0 >/dev/null
 draco_encoder -i "$tmp/tet.obj" -o "$tmp/eb.drc" -cl 7 >/dev/null
@@ -59,6 +59,10 @@ import struct, sys
 open(sys.argv[1], 'wb').write(b'solid binary'.ljust(80, b' ') + struct.pack('<I', 1) +
                               struct.pack('<12fH', 0, 0, -1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0))
 PY
+# The text meshes again for jade's own checks on them, in process.
+for f in tet.obj tet.ply strips.ply strips_binary.ply normal_past.obj corner.obj; do
+    cp "$c/fuzz_mesh_load/$f" "$c/fuzz_mesh_text/$f"
+done
 # glTF: the tetrahedron as .gltf (inline buffer, a node with TRS, a
 # material's extras; another with the translucency extensions), as .glb, and as a .glb whose primitive is the Draco
 # encoding above (KHR_draco_mesh_compression), for both the reader and the load.
