@@ -47,6 +47,22 @@ static jd_result peek_ply(const uint8_t *buf, size_t n, const char *name, uint32
     while (at < limit) {
         size_t k = line_at(buf, n, at, line, sizeof line);
         at += k + 1;
+        /* libdraco 1.5.5 crashed on mangled format lines in fuzzing, and
+         * reads no big-endian PLY at all: said here, in words. */
+        if (!strncmp(line, "format ", 7)) {
+            if (!strcmp(line, "format binary_big_endian 1.0"))
+                return jd_fail(err, JD_ERR_UNSUPPORTED,
+                               "%s: PLY is binary big-endian, which jade's reader (libdraco) does not read; save it "
+                               "as ASCII or little-endian", name);
+            if (strcmp(line, "format ascii 1.0") && strcmp(line, "format binary_little_endian 1.0")) {
+                char shown[41];
+                size_t i = 0;
+                for (; i < 40 && line[7 + i]; i++) shown[i] = line[7 + i] >= 32 && line[7 + i] < 127 ? line[7 + i] : '?';
+                shown[i] = 0;
+                return jd_fail(err, JD_ERR_FORMAT, "%s: PLY format line '%s' is not ascii, binary_little_endian or "
+                               "binary_big_endian 1.0", name, shown);
+            }
+        }
         if (!strncmp(line, "element face ", 13)) has_faces = 1;
         if (!strncmp(line, "element tristrips ", 18)) has_strips = 1;
         if (!strcmp(line, "end_header")) {

@@ -161,6 +161,10 @@ for f in strips_ascii.ply strips_binary.ply; do
 done
 { strip_hdr ascii; printf '0 0 0\n1 0 0\n0 1 0\n0 0 1\n5 0 2 1 9 3\n'; } > "$tmp/strips_bad.ply"
 refuse_file strips_bad.ply "tristrips refer to a vertex past the vertex count"
+sed 's/format ascii 1.0/format binary_big_endian 1.0/' "$tmp/tet.ply" > "$tmp/big.ply"
+refuse_file big.ply "PLY is binary big-endian, which jade's reader (libdraco) does not read"
+sed 's/format ascii 1.0/format binary_littl\xff_endian 1.0/' "$tmp/tet.ply" > "$tmp/mangled.ply"
+refuse_file mangled.ply "PLY format line 'binary_littl?_endian 1.0' is not ascii"
 printf 'v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n' > "$tmp/flat.obj"
 refuse_file flat.obj "has no area"
 # OBJ faces whose numbers libdraco would index with unchecked (found by
