@@ -112,26 +112,36 @@ std::unique_ptr<draco::Mesh> read_mesh(draco::DecoderBuffer *buffer, int format,
 {
     draco::Status status;
     std::unique_ptr<draco::Mesh> mesh;
-    char *faces = nullptr;
-    draco::DecoderBuffer with_faces;
+    char *rewritten = nullptr; // the file rewritten for libdraco: PLY strips as faces, OBJ without comments
+    draco::DecoderBuffer rewritten_buffer;
     if (format == JD_FORMAT_PLY) {
         size_t faces_n = 0;
         char msg[200];
-        int k = jd_ply_strips_to_faces(buffer->data_head(), static_cast<size_t>(buffer->remaining_size()), &faces,
+        int k = jd_ply_strips_to_faces(buffer->data_head(), static_cast<size_t>(buffer->remaining_size()), &rewritten,
                                        &faces_n, msg, sizeof msg);
         if (k < 0) {
             set_err(err, errlen, msg);
             return nullptr;
         }
         if (k > 0) {
-            with_faces.Init(faces, faces_n);
-            buffer = &with_faces;
+            rewritten_buffer.Init(rewritten, faces_n);
+            buffer = &rewritten_buffer;
         }
     }
     if (format == JD_FORMAT_OBJ) {
         char msg[200];
+        size_t clean_n = 0;
+        if (jd_obj_strip_comments(buffer->data_head(), static_cast<size_t>(buffer->remaining_size()), &rewritten,
+                                  &clean_n) < 0) {
+            set_err(err, errlen, "out of memory for the OBJ without its comments");
+            return nullptr;
+        }
+        if (rewritten) {
+            rewritten_buffer.Init(rewritten, clean_n);
+            buffer = &rewritten_buffer;
+        }
         if (jd_obj_check(buffer->data_head(), static_cast<size_t>(buffer->remaining_size()), msg, sizeof msg)) {
-            std::free(faces);
+            std::free(rewritten);
             set_err(err, errlen, msg);
             return nullptr;
         }
@@ -167,7 +177,7 @@ std::unique_ptr<draco::Mesh> read_mesh(draco::DecoderBuffer *buffer, int format,
         status = result.status();
         if (result.ok()) mesh = std::move(result).value();
     }
-    std::free(faces);
+    std::free(rewritten);
     if (!status.ok() || !mesh) {
         char msg[256];
         std::snprintf(msg, sizeof msg, "%s could not decode it: %s", format_name(format), status.error_msg());

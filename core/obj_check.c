@@ -1,6 +1,7 @@
 #include "obj_check.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* A face corner's index: a signed decimal, relative (negative) to the
@@ -64,7 +65,9 @@ int jd_obj_check(const char *data, size_t n, char *err, size_t errlen)
         s += 2;
         for (;;) {
             while (s < end && (*s == ' ' || *s == '\t' || *s == '\r')) s++;
-            if (s >= end) break;
+            /* A comment after the corners, or a line-continuation mark
+             * (which libdraco, like jade, takes for the face's end). */
+            if (s >= end || *s == '#' || *s == '\\') break;
             const char *corner = s;
             for (int k = 0; k < 3; k++) {
                 long v = 0;
@@ -86,8 +89,43 @@ int jd_obj_check(const char *data, size_t n, char *err, size_t errlen)
                 }
                 break;
             }
-            if (s < end && *s != ' ' && *s != '\t' && *s != '\r') return bad_corner(err, errlen, line, corner, end);
+            if (s < end && *s != ' ' && *s != '\t' && *s != '\r' && *s != '#' && *s != '\\')
+                return bad_corner(err, errlen, line, corner, end);
         }
     }
     return 0;
+}
+
+int jd_obj_strip_comments(const char *data, size_t n, char **out, size_t *out_n)
+{
+    *out = NULL;
+    *out_n = 0;
+    /* Only comments after something on their line: libdraco skips whole
+     * comment lines itself. */
+    int any = 0;
+    for (size_t at = 0; at < n && !any;) {
+        const char *s = data + at, *end = memchr(s, '\n', n - at);
+        if (!end) end = data + n;
+        at = (size_t)(end - data) + 1;
+        while (s < end && (*s == ' ' || *s == '\t')) s++;
+        if (s < end && *s != '#' && memchr(s, '#', (size_t)(end - s))) any = 1;
+    }
+    if (!any) return 0;
+    char *o = malloc(n ? n : 1);
+    if (!o) return -1;
+    size_t k = 0;
+    for (size_t at = 0; at < n;) {
+        const char *s = data + at, *end = memchr(s, '\n', n - at);
+        int has_nl = end != NULL;
+        if (!end) end = data + n;
+        at = (size_t)(end - data) + 1;
+        const char *hash = memchr(s, '#', (size_t)(end - s));
+        const char *stop = hash ? hash : end;
+        memcpy(o + k, s, (size_t)(stop - s));
+        k += (size_t)(stop - s);
+        if (has_nl) o[k++] = '\n';
+    }
+    *out = o;
+    *out_n = k;
+    return 1;
 }

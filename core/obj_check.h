@@ -16,6 +16,12 @@ extern "C" {
  * element defined before its line; -1: err says the first that is not. */
 int jd_obj_check(const char *data, size_t n, char *err, size_t errlen);
 
+/* libdraco reads a comment after a face's corners ("f 1 2 3 # top") as
+ * more corners: 1 with *out (malloc'd, *out_n bytes) the file with every
+ * comment cut from its line, 0 where none follows anything, -1 out of
+ * memory. */
+int jd_obj_strip_comments(const char *data, size_t n, char **out, size_t *out_n);
+
 #ifdef __cplusplus
 }
 #endif

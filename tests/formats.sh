@@ -173,6 +173,9 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//11\n' > "$tmp/normal
 refuse_file normal_past.obj "OBJ line 5: a face refers to normal 11, but the file has 1"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1-1\n' > "$tmp/corner.obj"
 refuse_file corner.obj "OBJ line 5: face corner '3/1-1' is not v, v/vt, v//vn or v/vt/vn"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2 # a comment\nf 1 2 4#another\nf 1 4 3\nf 2 3 4\n' > "$tmp/comments.obj"
+if render "$tmp/comments.obj" "$tmp/cm.png" && grep -q ": 4 triangles" "$tmp/out"; then ok "an OBJ with comments after its faces reads"
+else bad "comments.obj: $(cat "$tmp/out")"; fi
 printf 'f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 4\n' > "$tmp/faces_first.obj"
 if render "$tmp/faces_first.obj" "$tmp/ff.png" && grep -q ": 2 triangles" "$tmp/out"; then ok "an OBJ with a face before its vertices still reads (as libdraco reads it)"
 else bad "faces_first.obj: $(cat "$tmp/out")"; fi
