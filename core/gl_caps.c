@@ -36,9 +36,13 @@ void jd_gl_caps_recognise(jd_gl_caps *c)
         c->frag_highp_range = 0;
         if (c->frag_mediump_precision > 10) c->frag_mediump_precision = 10;
         if (c->frag_mediump_range > 15) c->frag_mediump_range = 15;
+        snprintf(c->tier, sizeof c->tier, "Mali-400/450");
     }
     /* VideoCore IV (Mesa vc4 says "VC4 V3D 2.1"; Broadcom's blob "VideoCore IV HW"). */
-    if (strstr(c->renderer, "VC4") || strstr(c->renderer, "VideoCore IV")) c->small_register_file = 1;
+    if (strstr(c->renderer, "VC4") || strstr(c->renderer, "VideoCore IV")) {
+        c->small_register_file = 1;
+        snprintf(c->tier, sizeof c->tier, "VideoCore IV");
+    }
     /* Vivante ("Vivante GC2000 rev 5108" from Mesa etnaviv, "GC2000 core"
      * with vendor "Vivante Corporation" from Vivante's driver) and Adreno
      * ("FD307" from Mesa freedreno, for the Adreno 306 of chip id 3.0.6.0;
@@ -51,6 +55,8 @@ void jd_gl_caps_recognise(jd_gl_caps *c)
     if (!strncmp(c->renderer, "FD", 2) && c->renderer[2] >= '1' && c->renderer[2] <= '9') c->adreno = atoi(c->renderer + 2);
     const char *a = strstr(c->renderer, "Adreno (TM) ");
     if (a) c->adreno = atoi(a + strlen("Adreno (TM) "));
+    if (c->vivante > 0 && c->vivante < 3000) snprintf(c->tier, sizeof c->tier, "Vivante GC400-GC2000");
+    if (c->adreno >= 300 && c->adreno < 400) snprintf(c->tier, sizeof c->tier, "Adreno 3xx");
 }
 
 jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)

@@ -29,6 +29,9 @@ typedef struct jd_gl_caps {
      * cores before GC3000 hold their programs in a 256-instruction memory
      * (no instruction cache): a longer one fails when it is drawn. */
     int max_program_instructions;
+    /* The boards' tier (docs/frame-cost.md): pictures over 960x540 shaded
+     * at that count; the board's name, or "" for any other GPU. */
+    char tier[32];
     char profile[16]; /* the device profile applied, or empty */
 } jd_gl_caps;
 

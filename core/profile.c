@@ -6,16 +6,16 @@
 const jd_profile jd_profiles[] = {
     {"generic", "any GLES 2.0 device: the specification's minimums, no extensions", 2048, 2048, 2048, 2048, 128, 16, 8,
      8, 0, 0, 0, "OpenGL ES 2.0.25, tables 6.18-6.20 (sizes raised to 2048, the smallest jade renders with)",
-     "the pass after the frame (ES 2.0 guarantees no multisampled config)"},
+     "the pass after the frame (ES 2.0 guarantees no multisampled config)", 0, 0, NULL},
     {"vc4", "Raspberry Pi 0-3 (VideoCore IV, Mesa vc4)", 2048, 2048, 2048, 2048, 256, 256, 8, 8, 8, 1, 0,
      "Mesa vc4_screen.c: 2D textures 2048, 8 varyings, samplers in both stages, fp32 (highp) shaders, "
      "8- and 16-bit index buffers only",
-     "4x multisampling in the EGL config (resolved in VideoCore IV's tile buffer)"},
+     "4x multisampling in the EGL config (resolved in VideoCore IV's tile buffer)", 1, 0, "VideoCore IV"},
     {"mali400", "Mali-400/450 (Utgard: ARM driver, Mesa lima)", 4096, 4096, 4096, 1024, 256, 256, 8, 8, 0, 0, 0,
      "ARM gles_config_m200.h / gles2_config_m200.h: 256 uniform vectors per stage, no vertex texture units, "
      "renderbuffers and viewports 4096, cube maps 1024; fragment shaders fp16 only; Mesa lima_screen.c: "
      "8 varyings (the hardware's limit)",
-     "4x multisampling in the EGL config (free on Mali-400's tile buffer)"},
+     "4x multisampling in the EGL config (free on Mali-400's tile buffer)", 1, 0, "Mali-400/450"},
     {"vivante", "Vivante GC2000 class (NXP i.MX6 Quad/Dual; STM32MP1's GC400 and i.MX6 DualLite's GC880 below it)",
      8192, 8192, 8192, 8192, 168, 64, 8, 8, 4, 1, 1,
      "Mesa etnaviv_screen.c on GC2000 rev 5108 (drm-shim): 168 vertex and 64 fragment uniform vectors (Vivante's "
@@ -23,13 +23,14 @@ const jd_profile jd_profiles[] = {
      "GC2000, 8 on GC400; Mesa reports 16); programs of at most 256 instructions per stage (no instruction cache "
      "before GC3000). GC400 has no vertex samplers: jade reads its caps and draws thickness per fragment there",
      "4x multisampling in the EGL config where the driver offers one (resolved by GC2000's resolve engine: "
-     "Vivante draws in immediate mode, the samples cost memory traffic); otherwise the pass after the frame"},
+     "Vivante draws in immediate mode, the samples cost memory traffic); otherwise the pass after the frame", 0, 256,
+     "Vivante GC400-GC2000"},
     {"adreno3xx", "Adreno 306/320 (Snapdragon 410/600: Qualcomm's driver, Mesa freedreno)", 8192, 8192, 8192, 8192,
      4096, 4096, 16, 16, 16, 1, 1,
      "Mesa freedreno_screen.c for a3xx as FD307 (Adreno 306) and FD320 report under the drm-shim: 16 varyings, 16 "
      "samplers in both stages, 8K textures, fp32 shaders (ir3 lowers mediump to 16-bit registers only from a5xx)",
      "4x multisampling in the EGL config where the driver offers one (resolved in Adreno's on-chip GMEM); otherwise "
-     "the pass after the frame"},
+     "the pass after the frame", 0, 0, "Adreno 3xx"},
 };
 const int jd_profile_count = (int)(sizeof jd_profiles / sizeof jd_profiles[0]);
 
@@ -68,9 +69,11 @@ void jd_profile_apply(const jd_profile *p, jd_gl_caps *c)
     c->ext_texture_float = 0;
     c->ext_packed_depth_stencil = 0;
     c->ext_standard_derivatives = 0;
-    /* The boards' profiles stand for their register files too. */
-    if (!strcmp(p->name, "vc4") || !strcmp(p->name, "mali400")) c->small_register_file = 1;
-    /* And the Vivante class for its program memory. */
-    if (!strcmp(p->name, "vivante") && !c->max_program_instructions) c->max_program_instructions = 256;
+    /* The board's GPU itself: what recognising it by name would set. */
+    if (p->small_register_file) c->small_register_file = 1;
+    if (p->max_program_instructions &&
+        (!c->max_program_instructions || c->max_program_instructions > p->max_program_instructions))
+        c->max_program_instructions = p->max_program_instructions;
+    if (p->tier) snprintf(c->tier, sizeof c->tier, "%s", p->tier);
     snprintf(c->profile, sizeof c->profile, "%s", p->name);
 }

@@ -19,6 +19,11 @@ typedef struct jd_profile {
     int ext_element_index_uint; /* 32-bit indices */
     const char *source;         /* where the numbers come from */
     const char *antialias;      /* how the board's edges get anti-aliased */
+    /* What the board's GPU is, beyond its limits (set in the caps as
+     * jd_gl_caps_recognise sets them for the real GPU): */
+    int small_register_file;    /* shaders kept small (Mali-400/450, VideoCore IV) */
+    int max_program_instructions; /* per stage, 0: no limit known */
+    const char *tier;           /* the boards' tier it draws at (docs/frame-cost.md), or NULL */
 } jd_profile;
 
 extern const jd_profile jd_profiles[];

@@ -8,19 +8,9 @@
 #include "scene.h"
 
 /* The boards whose tier draws less than jade's full quality (the
- * frame-cost model, docs/frame-cost.md): Mali-400/450, VideoCore IV,
- * Vivante's cores before GC3000 and Adreno 3xx, by renderer string or
- * profile. NULL for any other GPU. */
-static const char *tier_board(const jd_gl_caps *c)
-{
-    /* gl_caps and the profiles already tell these boards apart: only the
-     * name is found here. */
-    if (c->utgard || !strcmp(c->profile, "mali400")) return "Mali-400/450";
-    if (c->small_register_file) return "VideoCore IV";
-    if ((c->vivante > 0 && c->vivante < 3000) || !strcmp(c->profile, "vivante")) return "Vivante GC400-GC2000";
-    if ((c->adreno >= 300 && c->adreno < 400) || !strcmp(c->profile, "adreno3xx")) return "Adreno 3xx";
-    return NULL;
-}
+ * frame-cost model, docs/frame-cost.md), as gl_caps recognised them or a
+ * profile stands for them. NULL for any other GPU. */
+static const char *tier_board(const jd_gl_caps *c) { return c->tier[0] ? c->tier : NULL; }
 
 /* The share of the picture's size a device's tier draws at (render_scale
  * 0): on those boards full's main pass at 1920x1080 alone takes 27 ms

@@ -214,19 +214,19 @@ static void test_sh(void)
  * drm-shims, the vendors' from their documentation and users' logs). */
 static void test_recognise(void)
 {
-    static const struct { const char *vendor, *renderer; int utgard, small, vivante, adreno, limit; } gpus[] = {
-        {"lima", "Mali400", 1, 1, 0, 0, 0},
-        {"ARM", "Mali-450 MP", 1, 1, 0, 0, 0},
-        {"Broadcom", "VC4 V3D 2.1", 0, 1, 0, 0, 0},
-        {"etnaviv", "Vivante GC2000 rev 5108", 0, 0, 2000, 0, 256},
-        {"etnaviv", "Vivante GC400 rev 4652", 0, 0, 400, 0, 256},
-        {"Vivante Corporation", "GC2000 core", 0, 0, 2000, 0, 256},
-        {"etnaviv", "Vivante GC3000 rev 5450", 0, 0, 3000, 0, 0},
-        {"etnaviv", "Vivante GC7000 rev 6214", 0, 0, 7000, 0, 0},
-        {"freedreno", "FD307", 0, 0, 0, 307, 0},
-        {"Qualcomm", "Adreno (TM) 306", 0, 0, 0, 306, 0},
-        {"Mesa", "llvmpipe (LLVM 15.0.6, 256 bits)", 0, 0, 0, 0, 0},
-        {"NVIDIA Corporation", "NVIDIA H100 80GB HBM3/PCIe/SSE2", 0, 0, 0, 0, 0},
+    static const struct { const char *vendor, *renderer; int utgard, small, vivante, adreno, limit; const char *tier; } gpus[] = {
+        {"lima", "Mali400", 1, 1, 0, 0, 0, "Mali-400/450"},
+        {"ARM", "Mali-450 MP", 1, 1, 0, 0, 0, "Mali-400/450"},
+        {"Broadcom", "VC4 V3D 2.1", 0, 1, 0, 0, 0, "VideoCore IV"},
+        {"etnaviv", "Vivante GC2000 rev 5108", 0, 0, 2000, 0, 256, "Vivante GC400-GC2000"},
+        {"etnaviv", "Vivante GC400 rev 4652", 0, 0, 400, 0, 256, "Vivante GC400-GC2000"},
+        {"Vivante Corporation", "GC2000 core", 0, 0, 2000, 0, 256, "Vivante GC400-GC2000"},
+        {"etnaviv", "Vivante GC3000 rev 5450", 0, 0, 3000, 0, 0, ""},
+        {"etnaviv", "Vivante GC7000 rev 6214", 0, 0, 7000, 0, 0, ""},
+        {"freedreno", "FD307", 0, 0, 0, 307, 0, "Adreno 3xx"},
+        {"Qualcomm", "Adreno (TM) 306", 0, 0, 0, 306, 0, "Adreno 3xx"},
+        {"Mesa", "llvmpipe (LLVM 15.0.6, 256 bits)", 0, 0, 0, 0, 0, ""},
+        {"NVIDIA Corporation", "NVIDIA H100 80GB HBM3/PCIe/SSE2", 0, 0, 0, 0, 0, ""},
     };
     for (size_t i = 0; i < sizeof gpus / sizeof gpus[0]; i++) {
         jd_gl_caps c;
@@ -240,6 +240,7 @@ static void test_recognise(void)
               "%s / %s: utgard %d small %d vivante %d adreno %d limit %d", gpus[i].vendor, gpus[i].renderer, c.utgard,
               c.small_register_file, c.vivante, c.adreno, c.max_program_instructions);
         CHECK((c.frag_highp_precision == 0) == gpus[i].utgard, "%s: highp %d", gpus[i].renderer, c.frag_highp_precision);
+        CHECK(!strcmp(c.tier, gpus[i].tier), "%s: tier '%s', want '%s'", gpus[i].renderer, c.tier, gpus[i].tier);
     }
 }
 
