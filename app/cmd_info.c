@@ -66,17 +66,7 @@ static void print_program_limit(const jd_gl_caps *c)
 {
     char drv[32];
     snprintf(drv, sizeof drv, "etnaviv-gc%d", c->vivante ? c->vivante : 2000);
-    int most = 0;
-    for (const char *line = jd_frame_cost_table(); line && *line;) {
-        char name[32];
-        int vs = 0, fs = 0;
-        if (sscanf(line, "%31s %*s vs %d fs %d", name, &vs, &fs) >= 1 && !strcmp(name, drv)) {
-            if (vs > most) most = vs;
-            if (fs > most) most = fs;
-        }
-        const char *nl = strchr(line, '\n');
-        line = nl ? nl + 1 : NULL;
-    }
+    int most = jd_frame_cost_largest_program(NULL, drv);
     printf("program limit      %d instructions per stage (no instruction cache); ", c->max_program_instructions);
     if (most) printf("jade's largest on %s: %d\n", drv, most);
     else printf("%s is not in jade's compiler table\n", drv);

@@ -59,6 +59,17 @@ static int next_row(const char **at, const char *compiler, char w[][100], int *n
     return 0;
 }
 
+int jd_frame_cost_largest_program(const char *table, const char *compiler)
+{
+    char w[24][100];
+    const char *name;
+    int n;
+    double most = 0;
+    for (const char *at = table ? table : jd_device_table_text; next_row(&at, compiler, w, &n, &name);)
+        most = fmax(most, fmax(number(w[3]), number(w[5])));
+    return (int)most;
+}
+
 static int find_row(const char *table, const char *compiler, const char *program, table_row *row)
 {
     char w[24][100];

@@ -54,6 +54,10 @@ typedef struct jd_estimate {
 
 /* The compiler table built into this jade (tests/device-shaders.expected). */
 const char *jd_frame_cost_table(void);
+/* The most instructions any one stage of any program has on `compiler` (a
+ * driver column, e.g. "etnaviv-gc2000") in `table` (NULL: the built-in
+ * one), to set beside a GPU's program limit; 0 where it has no rows. */
+int jd_frame_cost_largest_program(const char *table, const char *compiler);
 
 /* Estimates `count` on `board` with the compiler table `table` (NULL: the
  * built-in one). Fails naming the program and compiler where the table has

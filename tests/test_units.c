@@ -266,6 +266,9 @@ static void test_frame_cost(void)
         {"imx6q-gc2000", 1188.0, 200.0}, /* 2 pixel pipes at 594 MHz; Freescale: 200 Mtri/s */
         {"sd410-a306", 800.0, 0.0},      /* 0.8 Gpix/s at 400 MHz */
     };
+    CHECK(jd_frame_cost_largest_program(table, "lima") == 69 && jd_frame_cost_largest_program(table, "etnaviv-gc400") == 0,
+          "the largest program: lima %d, a compiler with no rows %d", jd_frame_cost_largest_program(table, "lima"),
+          jd_frame_cost_largest_program(table, "etnaviv-gc400"));
     static jd_frame_count c;
     static jd_estimate e;
     jd_error err = {0};

@@ -78,6 +78,7 @@ int main()
         FN(jd_board_find),
         FN(jd_frame_cost_table),
         FN(jd_frame_cost_estimate),
+        FN(jd_frame_cost_largest_program),
         FN(jd_renderer_count),
         FN(jd_quit_on_signals),
         FN(jd_quit_requested),
