@@ -156,6 +156,18 @@ static jd_result build_base(jd_renderer *r, jd_error *err)
     return JD_OK;
 }
 
+/* One SH reduction program: rx x ry blocks summed into one. */
+static jd_result build_reduce(jd_renderer *r, int rx, int ry, GLuint *prog, GLint *src, GLint *texel, jd_error *err)
+{
+    char def[96];
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, rx, ry);
+    jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, prog, err);
+    if (res) return res;
+    *src = glGetUniformLocation(*prog, "u_src");
+    *texel = glGetUniformLocation(*prog, "u_src_texel");
+    return JD_OK;
+}
+
 /* single (and dual): the capture, its SH reduction, the irradiance map. */
 static jd_result build_sh(jd_renderer *r, jd_error *err)
 {
@@ -181,25 +193,13 @@ static jd_result build_sh(jd_renderer *r, jd_error *err)
     r->proj_atlas = glGetUniformLocation(r->project_prog, "u_atlas");
     r->proj_texel = glGetUniformLocation(r->project_prog, "u_atlas_texel");
     if (r->sh_mid > 1) {
-        snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, r->sh_mid,
-                 r->sh_mid);
-        if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs,
-                         &r->reduce_mid_prog, err)))
+        if ((res = build_reduce(r, r->sh_mid, r->sh_mid, &r->reduce_mid_prog, &r->rm_src, &r->rm_texel, err)))
             return res;
-        r->rm_src = glGetUniformLocation(r->reduce_mid_prog, "u_src");
-        r->rm_texel = glGetUniformLocation(r->reduce_mid_prog, "u_src_texel");
         nb /= r->sh_mid;
     }
-    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX %d\n#define JD_RY %d\n", r->highp, nb, nb);
-    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_faces_prog, err)))
+    if ((res = build_reduce(r, nb, nb, &r->reduce_faces_prog, &r->rf_src, &r->rf_texel, err)) ||
+        (res = build_reduce(r, 6, 1, &r->reduce_final_prog, &r->rl_src, &r->rl_texel, err)))
         return res;
-    r->rf_src = glGetUniformLocation(r->reduce_faces_prog, "u_src");
-    r->rf_texel = glGetUniformLocation(r->reduce_faces_prog, "u_src_texel");
-    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_RX 6\n#define JD_RY 1\n", r->highp);
-    if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/sh_reduce.frag", def, quad_attribs, &r->reduce_final_prog, err)))
-        return res;
-    r->rl_src = glGetUniformLocation(r->reduce_final_prog, "u_src");
-    r->rl_texel = glGetUniformLocation(r->reduce_final_prog, "u_src_texel");
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_SRC_W %d.0\n#define JD_SRC_H %d.0\n", r->highp, pot(1),
              pot(27));
     if ((res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/irradiance.frag", def, quad_attribs, &r->irr_prog, err)))
