@@ -80,6 +80,10 @@ static void reload(jd_session *s, jd_options *o, jd_scene *sc, int argc, char **
     if (mesh_changed) {
         int r = jd_session_reload_mesh(s, o, "kiosk");
         if (r < 0) return; /* said; the loop stops at the renderer's absence */
+    } else {
+        /* The same mesh, not read again: what its file says of its
+         * material still holds where the new configuration names none. */
+        jd_options_file_material(o, &s->load, s->mesh_path, "kiosk");
     }
     *sc = o->scene;
     fprintf(stderr, "jade kiosk: SIGHUP: configuration re-read from %s: mesh %s, material %s, light speed %g deg/s\n",

@@ -97,6 +97,14 @@ for m in tet cube tet cube tet cube; do
     hup "${base}mesh = $out/kiosk_hup_$m.obj\n" $((k + 1))
     k=$((k + 2))
 done
+# A glTF whose material names ketchup: its material holds through a
+# re-read that leaves the mesh as it is (the file is not read again).
+{ for c in 0 0 0 1 0 0 0 1 0 0 0 1; do if [ "$c" = 1 ]; then printf '\000\000\200\077'; else printf '\000\000\000\000'; fi; done
+  for i in 0 2 1 0 1 3 0 3 2 1 2 3; do printf "\\$(printf %03o "$i")\\000"; done; } > "$out/kiosk_hup.bin"
+printf '{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]}],"materials":[{"extras":{"jade_material":"ketchup"}}],"buffers":[{"byteLength":72,"uri":"data:application/octet-stream;base64,%s"}],"bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},{"bufferView":1,"componentType":5123,"count":12,"type":"SCALAR"}]}' \
+    "$(base64 -w0 "$out/kiosk_hup.bin")" > "$out/kiosk_hup.gltf"
+hup "${base}mesh = $out/kiosk_hup.gltf\n" $k
+hup "${base}mesh = $out/kiosk_hup.gltf\nlight-speed = 10\n" $((k + 1))
 sleep 1
 kill -TERM "$pid"
 wait "$pid"
@@ -108,6 +116,7 @@ check "the new material" "re-read from .*material ketchup"
 check "a broken file is named and changes nothing" "line 5: unknown option '--bogus'"
 check "a display option waits for a restart" "connector changed; that takes effect at the next start"
 check "a new mesh is drawn" "mesh $out/kiosk_hup_cube.obj"
+check "the file's material holds when the mesh stays" "mesh $out/kiosk_hup.gltf, material ketchup, light speed 10"
 gl_first=$(grep -m1 "new GL objects" "$out/kiosk_hup.out" | sed 's/.*new GL objects //')
 gl_last=$(grep "new GL objects" "$out/kiosk_hup.out" | tail -1 | sed 's/.*new GL objects //')
 if [ "$rc" -eq 0 ] && [ "$gl_last" = "0/0/0/0" ]; then
