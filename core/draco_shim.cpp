@@ -2,6 +2,7 @@
 #include "draco_shim.h"
 #include "obj_check.h"
 #include "ply_strips.h"
+#include "texture_decode.h"
 
 #include <cctype>
 #include <cmath>
@@ -232,7 +233,32 @@ int to_arrays(const draco::Mesh &mesh, const int *ids, uint32_t max_vertices, ui
     out->pos = copy_attribute(pos, nv, 3);
     out->nrm = nrm ? copy_attribute(nrm, nv, 3) : nullptr;
     out->uv = uv ? copy_attribute(uv, nv, 2) : nullptr;
-    if (!out->pos || (nrm && !out->nrm) || (uv && !out->uv)) {
+    // Vertex colours (PLY's red, green, blue): sRGB-encoded as scanners and
+    // exporters write them, kept as the vertex's reflectance.
+    const draco::PointAttribute *col = ids ? nullptr : mesh.GetNamedAttribute(draco::GeometryAttribute::COLOR);
+    bool col_bad = false;
+    if (col && col->num_components() >= 3) {
+        float *c = copy_attribute(col, nv, 3);
+        out->col = static_cast<uint8_t *>(std::malloc(4 * size_t(nv)));
+        if (!out->col) {
+            std::free(c);
+            jd_mesh_arrays_free(out);
+            throw std::bad_alloc();
+        }
+        bool bytes = col->data_type() == draco::DT_UINT8 || col->data_type() == draco::DT_INT8;
+        for (uint32_t i = 0; c && i < nv; ++i) {
+            for (int k = 0; k < 3; ++k) {
+                float v = c[3 * size_t(i) + k];
+                if (bytes && !col->normalized()) v /= 255.0f;
+                v = std::isfinite(v) ? std::fmin(std::fmax(v, 0.0f), 1.0f) : 0.0f;
+                out->col[4 * size_t(i) + k] = jd_sqrt_encode(jd_srgb_to_linear(uint8_t(v * 255.0f + 0.5f)));
+            }
+            out->col[4 * size_t(i) + 3] = 0;
+        }
+        col_bad = !c;
+        std::free(c);
+    }
+    if (!out->pos || (nrm && !out->nrm) || (uv && !out->uv) || col_bad) {
         jd_mesh_arrays_free(out);
         set_err(err, errlen, "an attribute maps a vertex to a value that does not exist");
         return -1;

@@ -14,10 +14,12 @@ extern "C" {
 #endif
 
 #define JD_DRACO_RECORD_MAGIC 0x314d444au /* "JDM1" */
-enum { JD_DRACO_HAS_NORMALS = 1, JD_DRACO_HAS_UVS = 2, JD_DRACO_HAS_MATERIAL = 4, JD_DRACO_HAS_MEDIUM = 8 };
+enum { JD_DRACO_HAS_NORMALS = 1, JD_DRACO_HAS_UVS = 2, JD_DRACO_HAS_MATERIAL = 4, JD_DRACO_HAS_MEDIUM = 8,
+       JD_DRACO_HAS_COLORS = 16, JD_DRACO_HAS_TEXTURE = 32 };
 
 /* Followed by float pos[3*nv], [float nrm[3*nv]], [float uv[2*nv]],
- * uint32 idx[3*nf], [char material[32], NUL-terminated]. */
+ * uint32 idx[3*nf], [char material[32], NUL-terminated], [jd_file_medium],
+ * [uint8 colour[4*nv]], [uint32 w, h, uint8 texels[4*w*h]]. */
 typedef struct jd_draco_record_header {
     uint32_t magic, num_vertices, num_faces, flags;
 } jd_draco_record_header;

@@ -13,6 +13,7 @@
 
 #include "draco_shim.h"
 #include "mesh_format.h"
+#include "texture_decode.h"
 
 enum { MAX_DEPTH = 64, MAX_INSTANCES = 65536 };
 
@@ -35,7 +36,7 @@ typedef struct gltf {
     const jd_gltf_limits *lim;
     char *err;
     size_t errlen;
-    table buffers, views, accessors, meshes, nodes, materials;
+    table buffers, views, accessors, meshes, nodes, materials, textures, images;
     blob *buf;
     const uint8_t *bin; /* the GLB's binary chunk */
     size_t bin_size;
@@ -44,7 +45,15 @@ typedef struct gltf {
     size_t cap_v, cap_f; /* room in out's arrays */
     int no_nrm, no_uv;   /* some primitive lacks them: drop them all */
     int skipped;         /* primitives that are points or lines */
+    /* The colour of the primitive being read (its material's
+     * baseColorFactor, whether its baseColorTexture is the one jade shows),
+     * the texture jade shows (-1: none yet) and whether any primitive had a
+     * colour of its own. */
+    double cur_factor[3];
+    int cur_textured, texture, coloured, other_textures;
 } gltf;
+
+static int numbers(const cJSON *a, int n, double *out);
 
 static int fail(gltf *g, const char *fmt, ...)
 {
@@ -129,25 +138,34 @@ static int load_data_uri(gltf *g, int i, const char *uri, blob *b)
     return 0;
 }
 
-/* A buffer file beside the glTF: a relative name that stays in its folder. */
+/* A buffer (or, with need SIZE_MAX, an image: the whole file) beside the
+ * glTF: a relative name that stays in its folder. */
 static int load_file_uri(gltf *g, int i, const char *uri, size_t need, blob *b)
 {
+    const char *kind = need == SIZE_MAX ? "image" : "buffer";
     if (uri[0] == '/' || strstr(uri, "..") || strchr(uri, '\\') || strchr(uri, ':') || strchr(uri, '%'))
-        return fail(g, "glTF buffer %d: uri '%.200s' is not a plain relative file name; refused", i, uri);
+        return fail(g, "glTF %s %d: uri '%.200s' is not a plain relative file name; refused", kind, i, uri);
     if (!g->path)
-        return fail(g, "glTF buffer %d: uri '%.200s' names a file, but the glTF came from memory; embed the "
-                       "buffer (GLB, or a data: URI)", i, uri);
+        return fail(g, "glTF %s %d: uri '%.200s' names a file, but the glTF came from memory; embed the "
+                       "%s (GLB, or a data: URI)", kind, i, uri, kind);
     char full[8192];
     const char *slash = strrchr(g->path, '/');
     int dir = slash ? (int)(slash - g->path + 1) : 0;
     if (snprintf(full, sizeof full, "%.*s%s", dir, g->path, uri) >= (int)sizeof full)
-        return fail(g, "glTF buffer %d: path too long", i);
+        return fail(g, "glTF %s %d: path too long", kind, i);
     int fd = open(full, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd < 0) return fail(g, "glTF buffer %d: cannot open %s: %s", i, full, strerror(errno));
+    if (fd < 0) return fail(g, "glTF %s %d: cannot open %s: %s", kind, i, full, strerror(errno));
     struct stat st;
     if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         close(fd);
-        return fail(g, "glTF buffer %d: %s is not a regular file", i, full);
+        return fail(g, "glTF %s %d: %s is not a regular file", kind, i, full);
+    }
+    if (need == SIZE_MAX) {
+        need = (size_t)st.st_size;
+        if (need > g->lim->max_buffer_bytes) {
+            close(fd);
+            return fail(g, "glTF image %d: %s has %zu bytes, over the limit of %zu", i, full, need, g->lim->max_buffer_bytes);
+        }
     }
     if ((size_t)st.st_size < need) {
         close(fd);
@@ -170,7 +188,7 @@ static int load_file_uri(gltf *g, int i, const char *uri, size_t need, blob *b)
         got += (size_t)k;
     }
     close(fd);
-    if (got < need) return fail(g, "glTF buffer %d: %s could not be read whole", i, full);
+    if (got < need) return fail(g, "glTF %s %d: %s could not be read whole", kind, i, full);
     g->loaded_bytes += need;
     b->data = b->owned;
     b->size = need;
@@ -320,7 +338,9 @@ static int grow(gltf *g, size_t nv, size_t nf)
         if (q) m->nrm = q;
         float *u = realloc(m->uv, cap * 2 * sizeof *u);
         if (u) m->uv = u;
-        if (!p || !q || !u) return fail(g, "out of memory");
+        uint8_t *k = realloc(m->col, cap * 4);
+        if (k) m->col = k;
+        if (!p || !q || !u || !k) return fail(g, "out of memory");
         g->cap_v = cap;
     }
     if (m->nf + nf > g->cap_f) {
@@ -337,7 +357,7 @@ static int grow(gltf *g, size_t nv, size_t nf)
 /* Appends a primitive's vertices placed by `xf` (column-major 4x4) and its
  * triangles (turned round where the transform mirrors). */
 static int append(gltf *g, const double *xf, size_t nv, const double *pos, const double *nrm, const double *uv,
-                  const uint32_t *tri, size_t nf)
+                  const double *color, int color_comps, const uint32_t *tri, size_t nf)
 {
     if (grow(g, nv, nf)) return -1;
     jd_mesh_arrays *m = g->out;
@@ -364,11 +384,18 @@ static int append(gltf *g, const double *xf, size_t nv, const double *pos, const
             double l = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
             for (int k = 0; k < 3; k++) m->nrm[3 * (m->nv + i) + (size_t)k] = l > 0 ? (float)(t[k] / l) : 0.0f;
         }
-        if (uv) {
-            m->uv[2 * (m->nv + i)] = (float)uv[2 * i];
-            m->uv[2 * (m->nv + i) + 1] = (float)uv[2 * i + 1];
+        m->uv[2 * (m->nv + i)] = uv ? (float)uv[2 * i] : 0.0f;
+        m->uv[2 * (m->nv + i) + 1] = uv ? (float)uv[2 * i + 1] : 0.0f;
+        /* The vertex's colour: factor times COLOR_0 (linear in glTF), and
+         * whether the texture applies (not without coordinates). */
+        uint8_t *oc = m->col + 4 * (m->nv + i);
+        for (int k = 0; k < 3; k++) {
+            double cv = color ? color[(size_t)color_comps * i + (size_t)k] : 1.0;
+            oc[k] = jd_sqrt_encode((float)(g->cur_factor[k] * (cv > 0 ? cv : 0)));
         }
+        oc[3] = g->cur_textured && uv ? 255 : 0;
     }
+    if (color) g->coloured = 1;
     for (size_t f = 0; f < nf; f++) {
         uint32_t a = tri[3 * f], b = tri[3 * f + 1], d = tri[3 * f + 2];
         if (det < 0) { uint32_t s = b; b = d; d = s; }
@@ -480,9 +507,45 @@ static void take_medium(gltf *g, const cJSON *mat)
     if (md->ignored[0]) md->flags |= JD_MEDIUM_NOTE;
 }
 
+/* The material's colour (glTF's metallic-roughness base colour, read as the
+ * diffuse reflectance): its factor, and its texture where it is the one jade
+ * shows (the first the scene uses; a model with several gets the others'
+ * factors only, and is told so). */
+static void take_colour(gltf *g, const cJSON *mat)
+{
+    const cJSON *pbr = get(mat, "pbrMetallicRoughness");
+    double f4[4] = {1, 1, 1, 1};
+    const cJSON *bf = get(pbr, "baseColorFactor");
+    if (bf && numbers(bf, 4, f4))
+        for (int k = 0; k < 3; k++) {
+            g->cur_factor[k] = f4[k] < 0 ? 0 : f4[k] > 1 ? 1 : f4[k];
+            if (g->cur_factor[k] != 1.0) g->coloured = 1;
+        }
+    const cJSON *bt = get(pbr, "baseColorTexture");
+    if (!bt) return;
+    double tex = count_field(bt, "index", -1);
+    if (tex < 0 || tex >= g->textures.count) return; /* checked when decoded: a missing one is ignored */
+    if (count_field(bt, "texCoord", 0) != 0) {
+        note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "a colour texture on a second set of texture coordinates");
+        return;
+    }
+    if (get(get(bt, "extensions"), "KHR_texture_transform"))
+        note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "KHR_texture_transform");
+    if (g->texture < 0) g->texture = (int)tex;
+    if (g->texture == (int)tex) {
+        g->cur_textured = 1;
+        g->coloured = 1;
+    } else {
+        g->other_textures++;
+    }
+}
+
 static void take_material(gltf *g, const cJSON *prim)
 {
     const cJSON *mat = at(&g->materials, get(prim, "material"));
+    for (int k = 0; k < 3; k++) g->cur_factor[k] = 1.0;
+    g->cur_textured = 0;
+    take_colour(g, mat);
     take_medium(g, mat);
     const cJSON *name = get(get(mat, "extras"), "jade_material");
     if (g->out->material[0] || !cJSON_IsString(name)) return;
@@ -552,7 +615,7 @@ static int draco_primitive(gltf *g, const double *xf, const cJSON *ext)
         for (size_t i = 0; i < 3 * nv; i++) p[i] = d.pos[i];
         for (size_t i = 0; n && i < 3 * nv; i++) n[i] = d.nrm[i];
         for (size_t i = 0; u && i < 2 * nv; i++) u[i] = d.uv[i];
-        rc = append(g, xf, nv, p, n, u, d.idx, d.nf);
+        rc = append(g, xf, nv, p, n, u, NULL, 0, d.idx, d.nf);
     } else {
         fail(g, "out of memory");
     }
@@ -577,18 +640,23 @@ static int primitive(gltf *g, const double *xf, const cJSON *prim)
     const cJSON *pi = get(attrs, "POSITION"), *ni = get(attrs, "NORMAL"), *ui = get(attrs, "TEXCOORD_0"),
                 *ii = get(prim, "indices");
     if (!pi) return fail(g, "glTF primitive has no POSITION attribute");
-    double *pos = NULL, *nrm = NULL, *uv = NULL, *ind = NULL;
+    double *pos = NULL, *nrm = NULL, *uv = NULL, *ind = NULL, *col = NULL;
     uint32_t *tri = NULL;
-    size_t nv = 0, nn = 0, nu = 0, ni_count = 0, nf = 0;
+    size_t nv = 0, nn = 0, nu = 0, ni_count = 0, nf = 0, nc = 0;
+    const cJSON *ci = get(attrs, "COLOR_0");
+    const cJSON *ct = get(at(&g->accessors, ci), "type");
+    int col_comps = cJSON_IsString(ct) && !strcmp(ct->valuestring, "VEC4") ? 4 : 3;
     int rc = read_accessor(g, pi, "POSITION", 3, 0, &pos, &nv);
+    if (!rc && ci) rc = read_accessor(g, ci, "COLOR_0", col_comps, 0, &col, &nc);
     if (!rc && ni) rc = read_accessor(g, ni, "NORMAL", 3, 0, &nrm, &nn);
     if (!rc && ui) rc = read_accessor(g, ui, "TEXCOORD_0", 2, 0, &uv, &nu);
     if (!rc && ii) rc = read_accessor(g, ii, "indices", 1, 1, &ind, &ni_count);
-    if (!rc && ((nrm && nn != nv) || (uv && nu != nv)))
+    if (!rc && ((nrm && nn != nv) || (uv && nu != nv) || (col && nc != nv)))
         rc = fail(g, "glTF primitive's attributes have different counts (%zu positions)", nv);
     if (!rc && nv > g->lim->max_vertices) rc = fail(g, "glTF primitive has %zu vertices, over the limit", nv);
     if (!rc) rc = triangles(g, (int)mode, ind, ii ? ni_count : nv, nv, &tri, &nf);
-    if (!rc) rc = append(g, xf, nv, pos, nrm, uv, tri, nf);
+    if (!rc) rc = append(g, xf, nv, pos, nrm, uv, col, col_comps, tri, nf);
+    free(col);
     free(pos);
     free(nrm);
     free(uv);
@@ -696,12 +764,45 @@ static int walk(gltf *g, const cJSON *roots)
     return rc;
 }
 
+/* The colour texture jade shows, decoded (texture_decode.h): its image
+ * from a data: URI, a file beside the glTF or a bufferView. */
+static int load_texture(gltf *g)
+{
+    int ti = g->texture;
+    const cJSON *img = at(&g->images, get(g->textures.item[ti], "source"));
+    if (!img) { /* KHR_texture_basisu, EXT_texture_webp: no core source */
+        note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "a colour texture in a format jade does not read");
+        g->texture = -1;
+        return 0;
+    }
+    blob b = {0};
+    const cJSON *uri = get(img, "uri");
+    int ii = (int)get(g->textures.item[ti], "source")->valuedouble;
+    if (cJSON_IsString(uri) && !strncmp(uri->valuestring, "data:", 5)) {
+        if (load_data_uri(g, ii, uri->valuestring, &b)) return -1;
+    } else if (cJSON_IsString(uri)) {
+        if (load_file_uri(g, ii, uri->valuestring, SIZE_MAX, &b)) return -1;
+    } else if (get(img, "bufferView")) {
+        size_t size;
+        if (view_bytes(g, get(img, "bufferView"), &b.data, &size, NULL)) return -1;
+        b.size = size;
+    } else {
+        return fail(g, "glTF image %d has neither a uri nor a bufferView", ii);
+    }
+    char what[48], msg[256];
+    snprintf(what, sizeof what, "glTF image %d", ii);
+    static const float one[3] = {1, 1, 1};
+    int rc = jd_texture_decode(b.data, b.size, one, g->lim->max_texture_side, what, &g->out->tex, msg, sizeof msg);
+    free(b.owned);
+    return rc ? fail(g, "%s", msg) : 0;
+}
+
 static uint32_t le32(const uint8_t *p) { return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24; }
 
 int jd_gltf_read(const uint8_t *buf, size_t n, const char *path, const jd_gltf_limits *lim, jd_mesh_arrays *out,
                  char *err, size_t errlen)
 {
-    gltf g = {.path = path, .lim = lim, .err = err, .errlen = errlen, .out = out};
+    gltf g = {.path = path, .lim = lim, .err = err, .errlen = errlen, .out = out, .texture = -1};
     memset(out, 0, sizeof *out);
     const char *json = (const char *)buf;
     size_t json_len = n;
@@ -751,7 +852,8 @@ int jd_gltf_read(const uint8_t *buf, size_t n, const char *path, const jd_gltf_l
     }
     if (make_table(&g, root, "buffers", &g.buffers) || make_table(&g, root, "bufferViews", &g.views) ||
         make_table(&g, root, "accessors", &g.accessors) || make_table(&g, root, "meshes", &g.meshes) ||
-        make_table(&g, root, "nodes", &g.nodes) || make_table(&g, root, "materials", &g.materials) || load_buffers(&g))
+        make_table(&g, root, "nodes", &g.nodes) || make_table(&g, root, "materials", &g.materials) ||
+        make_table(&g, root, "textures", &g.textures) || make_table(&g, root, "images", &g.images) || load_buffers(&g))
         goto done;
     table scenes;
     if (make_table(&g, root, "scenes", &scenes)) goto done;
@@ -776,9 +878,19 @@ int jd_gltf_read(const uint8_t *buf, size_t n, const char *path, const jd_gltf_l
     }
     if (!rc && (out->nv == 0 || out->nf == 0))
         rc = fail(&g, "glTF's scene has no triangles%s", g.skipped ? " (only points or lines)" : "");
+    if (!rc && g.texture >= 0) rc = load_texture(&g);
     if (!rc) {
         if (g.no_nrm) { free(out->nrm); out->nrm = NULL; }
-        if (g.no_uv) { free(out->uv); out->uv = NULL; }
+        /* A primitive without coordinates has the texture's weight 0. */
+        if (g.no_uv && !out->tex.texels) { free(out->uv); out->uv = NULL; }
+        if (!g.coloured && !out->tex.texels) { free(out->col); out->col = NULL; }
+        if (g.other_textures) {
+            char what[96];
+            snprintf(what, sizeof what, "%d more colour texture%s (jade shows one a model: their materials get their factor)",
+                     g.other_textures, g.other_textures == 1 ? "" : "s");
+            note(out->medium.ignored, sizeof out->medium.ignored, "; ", what);
+        }
+        if (out->medium.ignored[0]) out->medium.flags |= JD_MEDIUM_NOTE;
     }
 done:
     cJSON_Delete(root);
@@ -790,6 +902,8 @@ done:
     free(g.meshes.item);
     free(g.nodes.item);
     free(g.materials.item);
+    free(g.textures.item);
+    free(g.images.item);
     if (rc) jd_mesh_arrays_free(out);
     return rc;
 }

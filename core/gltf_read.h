@@ -14,7 +14,8 @@ extern "C" {
 
 typedef struct jd_gltf_limits {
     uint32_t max_vertices, max_faces; /* of the merged mesh */
-    size_t max_buffer_bytes;          /* all external and data: buffers together */
+    size_t max_buffer_bytes;          /* all external and data: buffers together, and an image's bytes */
+    uint32_t max_texture_side;        /* the colour texture's largest side once resampled */
 } jd_gltf_limits;
 
 /* Every triangle primitive (triangles, strips, fans; plain or

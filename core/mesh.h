@@ -19,6 +19,13 @@ typedef struct jd_mesh {
     void *indices;          /* uint16_t when index_size == 2, else uint32_t */
     int index_size;
     int normals_computed;   /* the file had none */
+    /* The surface's colour as its file gives it (glTF's base colour, an
+     * OBJ's Kd and map_Kd, PLY's vertex colours), read as the diffuse
+     * reflectance; colors NULL: none, the material's alone. */
+    uint8_t *colors;        /* 4 per vertex: sqrt of the linear reflectance in rgb, the texture's weight in a */
+    uint8_t *texels;        /* texture_w x texture_h RGBA, sqrt of the linear reflectance, top row first; or NULL */
+    uint32_t texture_w, texture_h; /* powers of two */
+    float albedo_mean[3];   /* the reflectance's mean over the surface, by area (jd_mesh_albedo_prepare) */
     jd_vec3 bmin, bmax;
 } jd_mesh;
 
@@ -52,6 +59,16 @@ int jd_mesh_normals_follow_winding(jd_mesh *m);
  * OES_element_index_uint), else fails. */
 jd_result jd_mesh_set_indices(jd_mesh *m, const uint32_t *idx, uint32_t count, int allow_32,
                               jd_arena *a, jd_error *err);
+
+/* After loading a mesh with colours: texture coordinates moved by whole
+ * tiles next to [0, 1) (under mediump a coordinate of 7.5 keeps fewer
+ * bits than one of 0.5) and albedo_mean found. */
+void jd_mesh_albedo_prepare(jd_mesh *m);
+/* The linear reflectance the colours give at a point of triangle `tri`
+ * (barycentrics u, v of its second and third vertex): the vertex colours
+ * interpolated, times the texture (bilinear, repeating) where it applies;
+ * 1 where the mesh has no colours. */
+void jd_mesh_albedo_at(const jd_mesh *m, uint32_t tri, float u, float v, float out[3]);
 
 /* A coarse stand-in made by vertex clustering on a grid of `cells` per axis,
  * for passes whose output is low-resolution or blurred anyway (cube capture,

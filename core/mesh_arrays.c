@@ -16,6 +16,8 @@ void jd_mesh_arrays_free(jd_mesh_arrays *m)
     free(m->nrm);
     free(m->uv);
     free(m->idx);
+    free(m->col);
+    free(m->tex.texels);
     memset(m, 0, sizeof *m);
 }
 
@@ -83,13 +85,18 @@ int jd_mesh_arrays_emit(const jd_mesh_arrays *m, jd_record_write_fn write, void 
                                 (m->nrm ? (uint32_t)JD_DRACO_HAS_NORMALS : 0u) |
                                     (m->uv ? (uint32_t)JD_DRACO_HAS_UVS : 0u) |
                                     (m->material[0] ? (uint32_t)JD_DRACO_HAS_MATERIAL : 0u) |
-                                    (m->medium.flags ? (uint32_t)JD_DRACO_HAS_MEDIUM : 0u)};
+                                    (m->medium.flags ? (uint32_t)JD_DRACO_HAS_MEDIUM : 0u) |
+                                    (m->col ? (uint32_t)JD_DRACO_HAS_COLORS : 0u) |
+                                    (m->tex.texels ? (uint32_t)JD_DRACO_HAS_TEXTURE : 0u)};
+    uint32_t tex_size[2] = {m->tex.w, m->tex.h};
     size_t nv = m->nv;
     if (write(user, &h, sizeof h) || write(user, m->pos, sizeof(float) * 3 * nv) ||
         (m->nrm && write(user, m->nrm, sizeof(float) * 3 * nv)) || (m->uv && write(user, m->uv, sizeof(float) * 2 * nv)) ||
         write(user, m->idx, sizeof(uint32_t) * 3 * (size_t)m->nf) ||
         (m->material[0] && write(user, m->material, sizeof m->material)) ||
-        (m->medium.flags && write(user, &m->medium, sizeof m->medium)))
+        (m->medium.flags && write(user, &m->medium, sizeof m->medium)) || (m->col && write(user, m->col, 4 * nv)) ||
+        (m->tex.texels && (write(user, tex_size, sizeof tex_size) ||
+                           write(user, m->tex.texels, (size_t)m->tex.w * m->tex.h * 4))))
         return -1;
     return 0;
 }

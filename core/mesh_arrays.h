@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "mesh_load.h"
+#include "texture_decode.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -19,6 +20,8 @@ typedef struct jd_mesh_arrays {
     float *nrm;      /* 3 per vertex, or NULL */
     float *uv;       /* 2 per vertex, or NULL */
     uint32_t *idx;   /* 3 per face */
+    uint8_t *col;    /* 4 per vertex: sqrt of the linear reflectance, texture weight (0 or 255); or NULL */
+    jd_texture tex;  /* the colour texture (texels NULL: none) */
     char material[32]; /* a material the file asks for (glTF extras), or "" */
     jd_file_medium medium; /* the medium the file describes (flags 0: none) */
 } jd_mesh_arrays;
@@ -35,7 +38,7 @@ void jd_mesh_arrays_drop_uvs(jd_mesh_arrays *m);
 void jd_mesh_arrays_order(jd_mesh_arrays *m);
 
 /* Streams the record: header, positions, [normals], [uvs], indices,
- * [material], [medium]. 0, or -1 when the pipe closed. */
+ * [material], [medium], [colours], [texture: w, h, texels]. 0, or -1 when the pipe closed. */
 int jd_mesh_arrays_emit(const jd_mesh_arrays *m, jd_record_write_fn write, void *user);
 
 #ifdef __cplusplus

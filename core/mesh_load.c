@@ -17,6 +17,8 @@
 #include "draco_header.h"
 #include "draco_shim.h"
 #include "gltf_read.h"
+#include "mesh_albedo.h"
+#include "obj_material.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define JD_ASAN 1
@@ -88,7 +90,7 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
     int rc;
     if (d->format == JD_FORMAT_GLTF) {
 #ifdef JD_HAVE_CJSON
-        jd_gltf_limits lim = {d->max_vertices, d->max_faces, d->max_file_bytes};
+        jd_gltf_limits lim = {d->max_vertices, d->max_faces, d->max_file_bytes, (uint32_t)d->max_texture_size};
         rc = jd_gltf_read(buf, n, d->data ? NULL : d->path, &lim, &m, msg, sizeof msg);
 #else
         snprintf(msg, sizeof msg, "this jade was built without libcjson, so it cannot read glTF");
@@ -96,9 +98,14 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
 #endif
     } else {
         rc = jd_draco_read(buf, n, (int)d->format, d->max_vertices, d->max_faces, &m, msg, sizeof msg);
+        if (rc == 0 && d->format == JD_FORMAT_OBJ)
+            rc = jd_obj_material(buf, n, d->data ? NULL : d->path, (uint32_t)d->max_texture_size, d->max_file_bytes, &m,
+                                 msg, sizeof msg);
     }
     if (rc == 0) {
-        if (!d->keep_uvs) jd_mesh_arrays_drop_uvs(&m); /* neither sent nor checked nor given arena memory */
+        /* Neither sent nor checked nor given arena memory where nothing
+         * needs them (a colour texture does). */
+        if (!d->keep_uvs && !m.tex.texels) jd_mesh_arrays_drop_uvs(&m);
         if (!d->keep_face_order) jd_mesh_arrays_order(&m);
         if (jd_mesh_arrays_emit(&m, write_all, &data_fd) != 0) {
             snprintf(msg, sizeof msg, "could not hand the decoded mesh back (pipe closed)");
@@ -248,6 +255,9 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
     if (!d.max_faces) d.max_faces = 4000000;
     if (d.timeout_ms <= 0) d.timeout_ms = 1500;
     if (!d.decode_memory_bytes) d.decode_memory_bytes = (size_t)192 << 20;
+    if (d.max_texture_size <= 0) d.max_texture_size = JD_TEXTURE_MEDIUMP_SIDE;
+    for (int p = 1; p <= d.max_texture_size; p <<= 1)
+        if (p * 2 > d.max_texture_size) { d.max_texture_size = p; break; } /* a power of two */
     jd_load_stats st = {0};
     memset(out, 0, sizeof *out);
 
@@ -330,6 +340,26 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
         r = read_exact(&rd, &st.medium, sizeof st.medium, &eof, err);
         if (r == JD_OK) take_medium(&st.medium);
     }
+    if (r == JD_OK && (h.flags & JD_DRACO_HAS_COLORS)) {
+        out->colors = jd_arena_alloc(a, 4 * (size_t)h.num_vertices, 16, "mesh colours", err);
+        r = out->colors ? read_exact(&rd, out->colors, 4 * (size_t)h.num_vertices, &eof, err) : JD_ERR_BUDGET;
+    }
+    if (r == JD_OK && (h.flags & JD_DRACO_HAS_TEXTURE)) {
+        uint32_t wh[2] = {0, 0};
+        r = read_exact(&rd, wh, sizeof wh, &eof, err);
+        /* Powers of two within the asked size, and only with coordinates
+         * and colours to use them. */
+        if (r == JD_OK && (!wh[0] || !wh[1] || (wh[0] & (wh[0] - 1)) || (wh[1] & (wh[1] - 1)) ||
+                           wh[0] > (uint32_t)d.max_texture_size || wh[1] > (uint32_t)d.max_texture_size || !out->uvs ||
+                           !out->colors))
+            r = jd_fail(err, JD_ERR_FORMAT, "%s: decoder returned an implausible texture (%u x %u)", d.path, wh[0], wh[1]);
+        if (r == JD_OK) {
+            out->texels = jd_arena_alloc(a, (size_t)wh[0] * wh[1] * 4, 16, "the colour texture", err);
+            r = out->texels ? read_exact(&rd, out->texels, (size_t)wh[0] * wh[1] * 4, &eof, err) : JD_ERR_BUDGET;
+            out->texture_w = wh[0];
+            out->texture_h = wh[1];
+        }
+    }
     st.decode_ms = jd_clock_ms() - t0;
 
     reap(pid, r != JD_OK && !eof, &status);
@@ -382,6 +412,13 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
     if (!r && out->uvs) r = jd_mesh_check_finite(out->uvs, out->num_vertices, 2, "texture coordinate", d.path, err);
     if (r) goto fail;
     jd_mesh_compute_bounds(out);
+    if (out->colors) {
+        jd_mesh_albedo_prepare(out);
+        st.coloured = 1;
+        memcpy(st.albedo_mean, out->albedo_mean, sizeof st.albedo_mean);
+        st.texture_w = out->texture_w;
+        st.texture_h = out->texture_h;
+    }
     /* Culling and the light map take the winding for the outside; shading
      * takes the normals: both are made to agree with the enclosed volume. */
     jd_mesh_orient_outward(out);

@@ -24,10 +24,17 @@ typedef struct jd_load_desc {
     size_t decode_memory_bytes; /* [192 MiB] address space the decoder may add */
     int allow_32bit_indices;    /* the GL device has OES_element_index_uint */
     int keep_face_order;        /* [0: triangles reordered for the GPU's vertex cache and overdraw] */
-    int keep_uvs;               /* [0: texture coordinates are dropped in the decoder, the renderer has
-                                   no use for them] 1: jd_mesh.uvs has them (jade convert keeps them) */
+    int keep_uvs;               /* [0: texture coordinates are dropped in the decoder unless a colour
+                                   texture needs them] 1: jd_mesh.uvs has them (jade convert keeps them) */
+    int max_texture_size;       /* [1024, JD_TEXTURE_MEDIUMP_SIDE] a colour texture's largest side once
+                                   resampled (a power of two) */
     int format;                 /* set by the loader: the jd_mesh_format found in the file */
 } jd_load_desc;
+
+/* The largest colour texture the renderer draws: its texture coordinates
+ * are mediump in the fragment stage, 11 significant bits where that is fp16,
+ * half a texel of a 1024-texel side. */
+#define JD_TEXTURE_MEDIUMP_SIDE 1024
 
 /* A scattering medium the file describes (glTF's KHR_materials_volume,
  * KHR_materials_volume_scatter, KHR_materials_ior), in jade's terms: per
@@ -51,6 +58,9 @@ typedef struct jd_load_stats {
     int format;         /* jd_mesh_format: Draco, glTF, OBJ, PLY or STL, by content */
     char material[32];  /* a jade material the file names (glTF extras.jade_material), or "" */
     jd_file_medium medium; /* flags 0 when the file describes none */
+    int coloured;       /* the file gives the surface colours (jd_mesh.colors) */
+    float albedo_mean[3]; /* their mean reflectance, as jd_mesh.albedo_mean */
+    uint32_t texture_w, texture_h; /* its colour texture as decoded, or 0 */
 } jd_load_stats;
 
 /* Reads desc->path, or desc->size bytes at desc->data (copied into the
