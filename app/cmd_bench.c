@@ -205,6 +205,8 @@ int jd_cmd_bench(int argc, char **argv)
            s.load.decode_ms, s.load.file_bytes);
     printf("  \"arena_budget_bytes\": %zu, \"arena_peak_bytes\": %zu, \"render_target_bytes\": %zu,\n", s.arena.size,
            s.arena.peak, info.target_bytes);
+    printf("  \"colour_texture_bytes\": %zu, \"colour_texture_size\": [%d, %d],\n", info.texture_bytes,
+           info.texture_width, info.texture_height);
     if (o.cycle_materials) {
         /* A soak: every mode's programs and targets made once before the
          * first health line, so later growth is growth, not set-up. */

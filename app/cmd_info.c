@@ -32,6 +32,43 @@ static void on_program(void *user, const char *vs, const char *fs, const char *d
     l->count++;
 }
 
+/* The picture's programs for a model with its own colours (JD_ALBEDO,
+ * JD_ALBEDO_MAP): a second renderer on the same mesh given a colour per
+ * vertex and a 4 x 4 texture. Its other programs are the first renderer's
+ * over again; the compiler table keeps the first of each name. */
+static int compile_colour_variants(jd_session *s, jd_options *o)
+{
+    jd_error err = {0};
+    jd_mesh m = s->mesh;
+    size_t nv = m.num_vertices;
+    m.colors = jd_arena_alloc(&s->arena, 4 * nv, 16, "colour variants: colours", &err);
+    if (!m.uvs) m.uvs = jd_arena_alloc(&s->arena, sizeof(float) * 2 * nv, 16, "colour variants: uvs", &err);
+    m.texels = jd_arena_alloc(&s->arena, 4 * 4 * 4, 16, "colour variants: texture", &err);
+    if (!m.colors || !m.uvs || !m.texels) {
+        fprintf(stderr, "jade info: %s\n", err.msg);
+        return 0;
+    }
+    memset(m.colors, 200, 4 * nv);
+    if (!s->mesh.uvs) memset(m.uvs, 0, sizeof(float) * 2 * nv);
+    memset(m.texels, 200, 4 * 4 * 4);
+    m.texture_w = m.texture_h = 4;
+    jd_mesh_albedo_prepare(&m);
+    jd_renderer_desc rd = o->rdesc;
+    rd.mesh = &m;
+    rd.caps = &s->caps;
+    rd.width = o->width;
+    rd.height = o->height;
+    rd.max_width = o->width;
+    rd.max_height = o->height;
+    jd_renderer *r = NULL;
+    if (jd_renderer_create(&rd, &s->arena, &r, &err)) {
+        fprintf(stderr, "jade info: the colour variants: %s\n", err.msg);
+        return 0;
+    }
+    jd_renderer_destroy(r);
+    return 1;
+}
+
 static int compile_all(jd_options *o)
 {
     compile_log l = {0};
@@ -52,6 +89,7 @@ static int compile_all(jd_options *o)
     /* The session passes the driver's messages on (the compiler's among
      * them) as they come, between this program's two lines. */
     int ok = jd_session_open(&s, o, "info");
+    if (ok && !s.mesh.colors) ok = compile_colour_variants(&s, o);
     jd_program_observe(NULL, NULL);
     jd_program_extra_defines(NULL);
     if (ok) printf("jade info --compile: %d programs built for %s (%s), none failed\n", l.count, s.caps.renderer,
@@ -141,6 +179,14 @@ int jd_cmd_info(int argc, char **argv)
     printf("vertex attribs     %d\nvertex uniforms    %d vec4\nfragment uniforms  %d vec4\nvaryings           %d vec4\n",
            c.max_vertex_attribs, c.max_vertex_uniform_vectors, c.max_fragment_uniform_vectors, c.max_varying_vectors);
     printf("texture units      %d (vertex: %d)\n", c.max_texture_units, c.max_vertex_texture_units);
+    {
+        /* What the renderer does to a model's colour texture here
+         * (jdr_upload_albedo): halved to the device's largest and to what
+         * a mediump texture coordinate addresses. */
+        int side = c.max_texture_size < JD_TEXTURE_MEDIUMP_SIDE ? c.max_texture_size : JD_TEXTURE_MEDIUMP_SIDE;
+        printf("colour textures    up to %dx%d, %zu bytes with mipmaps (texture coordinates are mediump: 11 bits)\n",
+               side, side, (size_t)side * side * 16 / 3);
+    }
     printf("fragment highp     %s (precision %d bits, range 2^%d)\n", c.frag_highp_precision >= 23 ? "yes" : "no",
            c.frag_highp_precision, c.frag_highp_range);
     printf("fragment mediump   precision %d bits, range 2^%d\n", c.frag_mediump_precision, c.frag_mediump_range);

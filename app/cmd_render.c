@@ -62,8 +62,11 @@ int jd_cmd_render(int argc, char **argv)
         printf("wrote %s (%dx%d, %s, %s, mesh %s: %u triangles)\n", o.out, o.width, o.height,
                jd_mode_name(o.scene.mode), o.material, s.mesh_path, s.mesh.num_indices / 3);
         printf("frame %.1f ms (after a warm-up frame), readback %.1f ms, first frame %.0f ms after start, "
-               "decode %.1f ms, arena peak %zu bytes, render targets %zu bytes\n",
+               "decode %.1f ms, arena peak %zu bytes, render targets %zu bytes",
                frame_ms, read_ms, first_ms, s.load.decode_ms, s.arena.peak, info.target_bytes);
+        if (info.texture_bytes)
+            printf(", colour texture %dx%d %zu bytes", info.texture_width, info.texture_height, info.texture_bytes);
+        printf("\n");
     }
     jd_session_close(&s);
     return rc;

@@ -43,6 +43,7 @@ static const opt table[] = {
     {"--samples", T_INT, OFF(samples), 100, 4000000, JD_OPT_REFERENCE, "N          irradiance samples [one per (0.3 mm)^2, 20,000 to 400,000]"},
     {"--error", T_FLOAT, OFF(ref_error), 0.001, 10, JD_OPT_REFERENCE, "X          octree error bound: node area / distance^2 [0.01]"},
     {"--window-mm", T_FLOAT, OFF(window_mm), 0.001, 1000, JD_OPT_REFERENCE, "X          near-field window, integrated exactly [2.5 mm or 3 sample spacings]"},
+    {"--pixel-samples", T_INT, OFF(pixel_samples), 1, 8, JD_OPT_REFERENCE, "N          N x N rays a pixel, averaged in linear light (textures' edges) [1]"},
     {"--threads", T_INT, OFF(threads), 1, 256, JD_OPT_REFERENCE, "N          [every core]"},
     {"--seed", T_INT, OFF(seed), 0, 1000000000, JD_OPT_REFERENCE, "N          sample placement [0]"},
     {"--quiet", T_FLAG, OFF(quiet), 0, 0, JD_OPT_REFERENCE, "           no progress bar"},
@@ -528,9 +529,33 @@ static void file_medium(jd_options *o, const jd_file_medium *m, const char *path
                 (double)o->scene.sigma_a[2], (double)o->scene.eta, (double)o->scene.mm_per_unit);
 }
 
+/* A model whose file gives its surface colours and no material: the
+ * material whose diffuse reflectance is their mean, with the current
+ * material's (marble's) diffuse mean free path (docs/textures.md). */
+static void file_colour(jd_options *o, const jd_load_stats *st, const char *path, const char *cmd)
+{
+    if (o->has_material || !st->coloured || (st->medium.flags & JD_MEDIUM_SIGMA) || st->material[0]) return;
+    if (o->has_sigma_s || o->has_sigma_a) return;
+    jd_dipole d;
+    jd_dipole_init(&d, o->scene.sigma_s, o->scene.sigma_a, o->scene.eta, 1.0f);
+    float ld[3];
+    for (int c = 0; c < 3; c++) ld[c] = d.sigma_tr[c] > 0 ? (float)(1.0 / d.sigma_tr[c]) : 1e3f;
+    jd_material_from_reflectance(st->albedo_mean, ld, o->scene.eta, o->scene.sigma_s, o->scene.sigma_a);
+    if (!o->colour_said)
+        fprintf(stderr,
+                "jade %s: %s: the material from the model's colours (mean reflectance %.3g %.3g %.3g) with %s's mean "
+                "free path: sigma_s' %.4g %.4g %.4g, sigma_a %.4g %.4g %.4g per mm\n",
+                cmd, path, (double)st->albedo_mean[0], (double)st->albedo_mean[1], (double)st->albedo_mean[2],
+                o->material, (double)o->scene.sigma_s[0], (double)o->scene.sigma_s[1], (double)o->scene.sigma_s[2],
+                (double)o->scene.sigma_a[0], (double)o->scene.sigma_a[1], (double)o->scene.sigma_a[2]);
+    o->colour_said = 1;
+    o->material = "colour";
+}
+
 void jd_options_file_material(jd_options *o, const jd_load_stats *st, const char *path, const char *cmd)
 {
     file_medium(o, &st->medium, path, cmd);
+    file_colour(o, st, path, cmd);
     const char *name = st->material;
     if (o->has_material || !name || !name[0]) return;
     const jd_material *m = jd_material_find(name);

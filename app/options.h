@@ -23,6 +23,7 @@ typedef struct jd_options {
     int num_positional;
     int samples, threads, seed, quiet;
     float ref_error, window_mm;
+    int pixel_samples;
     const char *drm_device, *connector, *display_mode;
     int rotation;
     int atomic;
@@ -47,6 +48,7 @@ typedef struct jd_options {
     jd_scene scene;
     int has_sigma_s, has_sigma_a, has_eta, has_budget, has_material;
     int medium_said; /* the file's medium has been said (once a run) */
+    int colour_said; /* the material from the model's colours has been said */
 } jd_options;
 
 enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD_OPT_KIOSK = 16, JD_OPT_REFERENCE = 32, JD_OPT_METRIC = 64,

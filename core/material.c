@@ -42,6 +42,25 @@ double jd_dipole_rd_total(double alpha, double A)
     return 0.5 * alpha * (1.0 + exp(-(4.0 / 3.0) * A * s)) * exp(-s);
 }
 
+void jd_material_from_reflectance(const float rd[3], const float ld_mm[3], float eta, float sigma_s[3],
+                                  float sigma_a[3])
+{
+    double fdr = jd_dipole_fdr(eta), A = (1.0 + fdr) / (1.0 - fdr);
+    for (int c = 0; c < 3; c++) {
+        double want = rd[c] < 0.001f ? 0.001 : rd[c] > 0.95f ? 0.95 : rd[c];
+        /* Rd_total(alpha') rises from 0 to 1 as alpha' goes from 0 to 1. */
+        double lo = 0.0, hi = 1.0;
+        for (int i = 0; i < 60; i++) {
+            double mid = 0.5 * (lo + hi);
+            if (jd_dipole_rd_total(mid, A) < want) lo = mid; else hi = mid;
+        }
+        double alpha = 0.5 * (lo + hi), ld = ld_mm[c] > 1e-3f ? ld_mm[c] : 1e-3;
+        double sigma_t = 1.0 / (ld * sqrt(3.0 * (1.0 - alpha)));
+        sigma_s[c] = (float)(alpha * sigma_t);
+        sigma_a[c] = (float)((1.0 - alpha) * sigma_t);
+    }
+}
+
 void jd_dipole_init(jd_dipole *d, const float sigma_s[3], const float sigma_a[3], float eta,
                     float density)
 {

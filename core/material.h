@@ -29,6 +29,13 @@ typedef struct jd_dipole {
 void jd_dipole_init(jd_dipole *d, const float sigma_s[3], const float sigma_a[3], float eta,
                     float density);
 double jd_dipole_fdr(double eta);
+/* The material whose total diffuse reflectance is rd and whose diffuse mean
+ * free path (1 / sigma_tr) is ld_mm, per channel: Jensen and Buhler 2002's
+ * inversion (Rd_total(alpha') = rd solved for the reduced albedo alpha' by
+ * bisection, then sigma_t' = 1 / (ld sqrt(3 (1 - alpha')))). rd is held to
+ * 0.001..0.95. */
+void jd_material_from_reflectance(const float rd[3], const float ld_mm[3], float eta, float sigma_s[3],
+                                  float sigma_a[3]);
 double jd_dipole_rd_total(double alpha, double A);
 /* Exitance from unit irradiance on every entry point at distance >= t mm. */
 double jd_dipole_tail(const jd_dipole *d, int channel, double t_mm);

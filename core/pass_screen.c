@@ -61,6 +61,14 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         glBindTexture(GL_TEXTURE_2D, r->tail_tex);
         glActiveTexture(GL_TEXTURE0);
     }
+    if (p->albedo_norm >= 0) glUniform3fv(p->albedo_norm, 1, f->albedo_norm);
+    if (p->albedo_map >= 0) {
+        glUniform1i(p->albedo_map, 7);
+        glUniform1f(p->albedo_bias, f->albedo_bias);
+        glActiveTexture(GL_TEXTURE7);
+        glBindTexture(GL_TEXTURE_2D, r->albedo_tex);
+        glActiveTexture(GL_TEXTURE0);
+    }
     if (p->wide >= 0) {
         glUniform1i(p->wide, 6);
         glUniform2f(p->inv_viewport, (float)r->wide.w / r->wide.tw / (float)w, (float)r->wide.h / r->wide.th / (float)h);

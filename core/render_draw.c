@@ -15,6 +15,18 @@ void jdr_bind_mesh(GLuint vbo, GLuint ibo)
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 24, (const void *)12);
 }
 
+void jdr_mesh_attributes(const jd_renderer *r, size_t at)
+{
+    GLsizei st = (GLsizei)r->vstride;
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, st, (const void *)at);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, st, (const void *)(at + 12));
+    if (!r->albedo) return;
+    glEnableVertexAttribArray(2);
+    glEnableVertexAttribArray(3);
+    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, st, (const void *)(at + 24));
+    glVertexAttribPointer(3, 4, GL_UNSIGNED_BYTE, GL_TRUE, st, (const void *)(at + 32));
+}
+
 void jdr_bind_quad(const jd_renderer *r)
 {
     glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
@@ -84,14 +96,14 @@ void jdr_draw_elements(jd_renderer *r, int mesh, const jd_mat4 *mvp, GLsizei cou
 void jdr_draw_mesh(jd_renderer *r, const jd_mat4 *mvp)
 {
     jdr_bind_mesh(r->mesh_vbo, r->mesh_ibo);
+    jdr_mesh_attributes(r, 0);
     if (!r->num_chunks) {
         jdr_draw_elements(r, 0, mvp, (GLsizei)r->d.mesh->num_indices, r->mesh_index_type, 0, -1);
         return;
     }
     for (int i = 0; i < r->num_chunks; i++) {
         const struct mesh_chunk *ch = &r->chunks[i];
-        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 24, (const void *)ch->vertex_offset);
-        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 24, (const void *)(ch->vertex_offset + 12));
+        jdr_mesh_attributes(r, ch->vertex_offset);
         /* A chunk's own vertices under the range model; under a FIFO, the
          * whole mesh's misses shared out by triangles. */
         double v = r->count_vertices[0] < 0 ? (double)ch->vertices

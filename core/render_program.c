@@ -9,7 +9,7 @@
 #include "gl_program.h"
 #include "program_probe.h"
 
-static const char *const mesh_attribs[] = {"a_position", "a_normal", NULL};
+static const char *const mesh_attribs[] = {"a_position", "a_normal", "a_uv", "a_color", NULL};
 static const char *const quad_attribs[] = {"a_corner", NULL};
 static const char *const project_attribs[] = {"a_corner", "a_poly0", "a_poly1", "a_channel", "a_texel", NULL};
 
@@ -98,6 +98,9 @@ static void shade_locations(shade_prog *p)
     p->light_dir_v = glGetUniformLocation(id, "u_light_dir_v");
     p->wide = glGetUniformLocation(id, "u_wide");
     p->lw = glGetUniformLocation(id, "u_lw");
+    p->albedo_norm = glGetUniformLocation(id, "u_albedo_norm");
+    p->albedo_map = glGetUniformLocation(id, "u_albedo_map");
+    p->albedo_bias = glGetUniformLocation(id, "u_albedo_bias");
     p->ls = glGetUniformLocation(id, "u_ls");
     p->wl = glGetUniformLocation(id, "u_wl");
 }
@@ -125,16 +128,21 @@ static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_err
 static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
 {
     char def[512];
-    int translucent = m == JD_MODE_SINGLE || m == JD_MODE_DUAL;
+    int translucent = m == JD_MODE_SINGLE || m == JD_MODE_DUAL, map = r->albedo_tex != 0;
+    /* The model's own colours (JD_ALBEDO: per vertex; _MAP: its texture too)
+     * only in the programs that draw the picture: the light-space and
+     * low-resolution passes carry light, and the picture's pass multiplies
+     * it by the surface's colour. */
     snprintf(def, sizeof def,
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
              "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
-             "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n",
+             "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO %d\n#define JD_ALBEDO_MAP %d\n",
              r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
-             m == JD_MODE_FULL && !r->vertex_diffusion);
-    /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel] [v_wide] */
+             m == JD_MODE_FULL && !r->vertex_diffusion, r->albedo, r->albedo && map);
+    /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel] [v_wide] [v_col] [v_uv] */
     int varyings = translucent ? (r->vertex_thickness ? 5 : 6)
                                : 3 + (m == JD_MODE_FULL) + (m == JD_MODE_FULL && r->vertex_diffusion);
+    varyings += r->albedo + (r->albedo && map);
     jd_result res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
                           &r->shade[m].id, err);
     if (res == JD_OK) shade_locations(&r->shade[m]);
@@ -219,7 +227,7 @@ static jd_result build_spread(jd_renderer *r, jd_error *err)
     snprintf(def, sizeof def,
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n"
              "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL 0\n#define JD_VERTEX_DIFFUSION 0\n"
-             "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 0\n",
+             "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n",
              r->highp, r->vertex_thickness);
     if ((res = build(r, r->vertex_thickness ? 5 : 6, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
                      mesh_attribs, &r->a0.id, err)))
@@ -255,7 +263,7 @@ static jd_result build_full(jd_renderer *r, jd_error *err)
         snprintf(def, sizeof def,
                  "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 0\n#define JD_SPREAD 0\n#define JD_A0_ONLY 0\n"
                  "#define JD_VERTEX_THICKNESS 0\n#define JD_FULL 1\n#define JD_VERTEX_DIFFUSION 0\n"
-                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n",
+                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n",
                  r->highp);
         if ((res = build(r, 3, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
                          err)))

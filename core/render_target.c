@@ -2,7 +2,9 @@
  * renderbuffer where asked) and the mesh uploads, chunked to 16-bit
  * indices where the GPU has no 32-bit ones. */
 #include "renderer_internal.h"
+#include "mesh_load.h"
 
+#include <math.h>
 #include <string.h>
 
 /* ---- start-up ---------------------------------------------------------- */
@@ -88,31 +90,38 @@ void jdr_free_target(target *t)
     memset(t, 0, sizeof *t);
 }
 
-/* Positions normalised to the bounding sphere (centre 0, radius 1) keep
- * coordinates small for fp16 varyings; interleaved with normals. */
 /* One vertex as uploaded: the position centred and scaled to the unit
- * sphere, then the normal. */
-static void pack_vertex(float *o, const jd_mesh *m, uint32_t i, jd_vec3 c, float inv_r)
+ * sphere (coordinates small for fp16 varyings), the normal, and for a mesh
+ * with colours its texture coordinates and colour (4 bytes, normalised). */
+static void pack_vertex(uint8_t *o, const jd_mesh *m, uint32_t i, jd_vec3 c, float inv_r)
 {
     const float *p = m->positions + 3 * (size_t)i, *n = m->normals + 3 * (size_t)i;
-    o[0] = (p[0] - c.x) * inv_r;
-    o[1] = (p[1] - c.y) * inv_r;
-    o[2] = (p[2] - c.z) * inv_r;
-    o[3] = n[0];
-    o[4] = n[1];
-    o[5] = n[2];
+    float v[8] = {(p[0] - c.x) * inv_r, (p[1] - c.y) * inv_r, (p[2] - c.z) * inv_r, n[0], n[1], n[2], 0.0f, 0.0f};
+    if (!m->colors) {
+        memcpy(o, v, 24);
+        return;
+    }
+    if (m->uvs) {
+        v[6] = m->uvs[2 * (size_t)i];
+        v[7] = m->uvs[2 * (size_t)i + 1];
+    }
+    memcpy(o, v, 32);
+    memcpy(o + 32, m->colors + 4 * (size_t)i, 4);
 }
+
+int jdr_vertex_stride(const jd_mesh *m) { return m->colors ? JDR_STRIDE_COLOUR : JDR_STRIDE_PLAIN; }
 
 jd_result jdr_upload_mesh(const jd_mesh *m, jd_vec3 c, float inv_r, GLuint *vbo, GLuint *ibo,
                              jd_arena *a, jd_error *err)
 {
     size_t top = jd_arena_top_mark(a);
-    float *v = jd_arena_alloc_top(a, sizeof(float) * 6 * m->num_vertices, 16, "vertex upload scratch", err);
+    size_t stride = (size_t)jdr_vertex_stride(m);
+    uint8_t *v = jd_arena_alloc_top(a, stride * m->num_vertices, 16, "vertex upload scratch", err);
     if (!v) return JD_ERR_BUDGET;
-    for (uint32_t i = 0; i < m->num_vertices; i++) pack_vertex(v + 6 * (size_t)i, m, i, c, inv_r);
+    for (uint32_t i = 0; i < m->num_vertices; i++) pack_vertex(v + stride * i, m, i, c, inv_r);
     glGenBuffers(1, vbo);
     glBindBuffer(GL_ARRAY_BUFFER, *vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6 * m->num_vertices), v, GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(stride * m->num_vertices), v, GL_STATIC_DRAW);
     glGenBuffers(1, ibo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, *ibo);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)((size_t)m->index_size * m->num_indices), m->indices,
@@ -136,7 +145,8 @@ jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c, f
     /* Copies: at most one per index, and in practice far fewer than twice
      * the vertices (a chunk repeats only its border). */
     size_t v_cap = m->num_indices < (size_t)m->num_vertices * 2 ? m->num_indices : (size_t)m->num_vertices * 2;
-    float *v = jd_arena_alloc_top(a, sizeof(float) * 6 * v_cap, 16, "chunked vertex upload", err);
+    size_t stride = (size_t)jdr_vertex_stride(m);
+    uint8_t *v = jd_arena_alloc_top(a, stride * v_cap, 16, "chunked vertex upload", err);
     uint16_t *ix = jd_arena_alloc_top(a, sizeof(uint16_t) * m->num_indices, 16, "chunked index upload", err);
     r->chunks = jd_arena_alloc(a, sizeof *r->chunks * max_chunks, 16, "mesh chunks", err);
     if (!local || !used || !v || !ix || !r->chunks) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
@@ -155,14 +165,14 @@ jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c, f
             if ((size_t)r->num_chunks == max_chunks) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_BUDGET, "too many mesh chunks"); }
             ch = &r->chunks[r->num_chunks++];
             ch->index_offset = ni * sizeof(uint16_t);
-            ch->vertex_offset = nv * 6 * sizeof(float);
+            ch->vertex_offset = nv * stride;
             ch->count = 0;
             ch->vertices = 0;
         }
         for (int k = 0; k < 3; k++) {
             if (local[tri[k]] < 0) {
                 if (nv == v_cap) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_BUDGET, "mesh chunks: vertex copies over the scratch"); }
-                pack_vertex(v + 6 * nv++, m, tri[k], c, inv_r);
+                pack_vertex(v + stride * nv++, m, tri[k], c, inv_r);
                 ch->vertices++;
                 local[tri[k]] = (int32_t)n_used;
                 used[n_used++] = tri[k];
@@ -173,10 +183,78 @@ jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c, f
     }
     glGenBuffers(1, &r->mesh_vbo);
     glBindBuffer(GL_ARRAY_BUFFER, r->mesh_vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6 * nv), v, GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(stride * nv), v, GL_STATIC_DRAW);
     glGenBuffers(1, &r->mesh_ibo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->mesh_ibo);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof(uint16_t) * ni), ix, GL_STATIC_DRAW);
     jd_arena_top_reset(a, top);
     return glGetError() == GL_NO_ERROR ? JD_OK : jd_fail(err, JD_ERR_GL, "mesh upload failed (out of GPU memory?)");
+}
+
+/* The model's colour texture: halved on the CPU until the device takes it
+ * (its largest texture, and at most 1024: the fragment stage is mediump
+ * only, and a mediump texture coordinate in [0, 1), with 11 significant
+ * bits where mediump is fp16 (Mali-400), lands within half a texel of
+ * 1024), mipmapped (the entry's colour is read from a coarser level) and
+ * repeating. Its bytes, mipmaps included, are counted. */
+jd_result jdr_upload_albedo(jd_renderer *r, const jd_mesh *m, jd_arena *a, jd_error *err)
+{
+    if (!m->texels || !m->uvs) return JD_OK;
+    size_t top = jd_arena_top_mark(a);
+    int cap = r->d.caps->max_texture_size > 0 ? r->d.caps->max_texture_size : 64;
+    if (cap > JD_TEXTURE_MEDIUMP_SIDE) cap = JD_TEXTURE_MEDIUMP_SIDE;
+    int w = (int)m->texture_w, h = (int)m->texture_h;
+    const uint8_t *src = m->texels;
+    while (w > cap || h > cap) {
+        int nw = w > 1 ? w / 2 : 1, nh = h > 1 ? h / 2 : 1;
+        uint8_t *dst = jd_arena_alloc_top(a, (size_t)nw * nh * 4, 16, "colour texture reduction", err);
+        if (!dst) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
+        for (int y = 0; y < nh; y++)
+            for (int x = 0; x < nw; x++)
+                for (int c = 0; c < 4; c++) {
+                    int sx = w > 1 ? 2 * x : x, sy = h > 1 ? 2 * y : y, dx = w > 1, dy = h > 1;
+                    unsigned sum = src[4 * ((size_t)sy * w + sx) + c] + src[4 * ((size_t)sy * w + sx + dx) + c] +
+                                   src[4 * ((size_t)(sy + dy) * w + sx) + c] + src[4 * ((size_t)(sy + dy) * w + sx + dx) + c];
+                    dst[4 * ((size_t)y * nw + x) + c] = (uint8_t)((sum + 2) / 4);
+                }
+        src = dst;
+        w = nw;
+        h = nh;
+    }
+    /* Texels per world unit of the surface (the renderer's world: the
+     * bounding sphere's radius is 1), from the areas of the triangles in
+     * both spaces. */
+    jd_vec3 centre;
+    float radius;
+    jd_mesh_placement(m, &centre, &radius);
+    double tex_area = 0, world_area = 0;
+    for (uint32_t t = 0; t + 2 < m->num_indices; t += 3) {
+        uint32_t i0 = jd_mesh_index(m, t), i1 = jd_mesh_index(m, t + 1), i2 = jd_mesh_index(m, t + 2);
+        const float *u0 = m->uvs + 2 * (size_t)i0, *u1 = m->uvs + 2 * (size_t)i1, *u2 = m->uvs + 2 * (size_t)i2;
+        tex_area += 0.5 * fabs(((double)u1[0] - u0[0]) * ((double)u2[1] - u0[1]) - ((double)u2[0] - u0[0]) * ((double)u1[1] - u0[1]));
+        const float *p0 = m->positions + 3 * (size_t)i0, *p1 = m->positions + 3 * (size_t)i1, *p2 = m->positions + 3 * (size_t)i2;
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; k++) {
+            e1[k] = (double)p1[k] - p0[k];
+            e2[k] = (double)p2[k] - p0[k];
+        }
+        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
+        world_area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz) / ((double)radius * radius);
+    }
+    r->albedo_texels_per_world = world_area > 0 ? (float)sqrt(tex_area * w * h / world_area) : 0.0f;
+    glGenTextures(1, &r->albedo_tex);
+    glBindTexture(GL_TEXTURE_2D, r->albedo_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, src);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    jd_arena_top_reset(a, top);
+    r->albedo_w = w;
+    r->albedo_h = h;
+    r->albedo_bytes = (size_t)w * h * 4 * 4 / 3;
+    return glGetError() == GL_NO_ERROR ? JD_OK
+                                       : jd_fail(err, JD_ERR_GL, "the colour texture (%d x %d) did not upload (out of GPU memory?)", w, h);
 }

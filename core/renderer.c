@@ -125,11 +125,14 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
      * surface between, by about half of that. */
     r->proxy_error = 0.87f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius / (float)d->proxy_cells;
     r->fit_key[0] = -1.0f;
+    r->albedo = m->colors != NULL;
+    r->vstride = jdr_vertex_stride(m);
     while (glGetError() != GL_NO_ERROR) {}
     if ((chunked ? (res = jdr_upload_mesh_chunked(r, m, c, 1.0f / radius, a, err))
                  : (res = jdr_upload_mesh(m, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err))) ||
         (res = jdr_upload_mesh(&r->proxy, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a, err)) ||
-        (res = jdr_upload_mesh(&r->capture_proxy, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a, err)))
+        (res = jdr_upload_mesh(&r->capture_proxy, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a, err)) ||
+        (res = jdr_upload_albedo(r, m, a, err)))
         goto fail;
     r->tail_tex = jdr_new_texture(TAIL_SIZE, 1, GL_LINEAR);
     r->target_bytes += TAIL_SIZE * 4;
@@ -201,6 +204,7 @@ void jd_renderer_destroy(jd_renderer *r)
                      r->project_vbo};
     glDeleteBuffers(8, bufs);
     if (r->tail_tex) glDeleteTextures(1, &r->tail_tex);
+    if (r->albedo_tex) glDeleteTextures(1, &r->albedo_tex);
     if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
     glDeleteProgram(r->wide_prog.id);
@@ -253,6 +257,9 @@ void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
     for (int m = 0; m < JD_MODE_COUNT; m++) info->shown_as[m] = r->shown[m];
     info->fallback = r->fallback[0] ? r->fallback : NULL;
     info->target_bytes = r->target_bytes;
+    info->texture_bytes = r->albedo_bytes;
+    info->texture_width = r->albedo_w;
+    info->texture_height = r->albedo_h;
     info->highp = r->highp;
     info->vertex_thickness = r->vertex_thickness;
     info->gpu_timer = r->tq.ok;
@@ -318,6 +325,21 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
     f->light_map[3] = 0.5f * r->proxy_error;
     f->shadow_bias[0] = 1.5f / lsz;
     f->shadow_bias[1] = 0.5f * r->proxy_error;
+    if (r->albedo) {
+        const jd_mesh *m = r->d.mesh;
+        for (int c = 0; c < 3; c++) f->albedo_norm[c] = 1.0f / m->albedo_mean[c];
+        /* The light leaving a point entered around it: the entry's colour
+         * takes the texture's mean out to the profile's 60% radius (green:
+         * where jd_dipole_tail falls to 40% of Rd_total), the mip level
+         * whose texel spans it (docs/textures.md). */
+        double lo = 0.0, hi = 1e4, want = 0.4 * jd_dipole_tail(&o.dipole, 1, 0.0);
+        for (int i = 0; i < 48; i++) {
+            double mid = 0.5 * (lo + hi);
+            if (jd_dipole_tail(&o.dipole, 1, mid) > want) lo = mid; else hi = mid;
+        }
+        double texels = lo / f->mm_per_world * r->albedo_texels_per_world;
+        f->albedo_bias = texels > 1.0 ? (float)log2(texels) : 0.0f;
+    }
 
     /* The paper's spread width, sigma = 2 sigma_s, read as millimetres and
      * turned into pixels of the low-resolution buffer at the object's depth. */

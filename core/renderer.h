@@ -168,6 +168,8 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
 /* What a renderer chose for this device, and what it holds. */
 typedef struct jd_renderer_info {
     size_t target_bytes;      /* render targets' memory on the GPU */
+    size_t texture_bytes;     /* the model's colour texture on the GPU, mipmaps included (0: none) */
+    int texture_width, texture_height; /* its size as uploaded (halved to the device's limit) */
     int highp;                /* SH packing: 1 three bytes (fragment highp), 0 two (mediump) */
     int vertex_thickness;     /* thickness read per vertex (vertex texture units), else per fragment */
     int gpu_timer;            /* GL_EXT_disjoint_timer_query: per-pass GPU times with timing on */

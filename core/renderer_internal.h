@@ -55,6 +55,7 @@ typedef struct shade_prog {
     GLint spread, inv_viewport, w0;
     GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls, wl;
     GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
+    GLint albedo_norm, albedo_map, albedo_bias;
 } shade_prog;
 
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */
@@ -96,6 +97,14 @@ struct jd_renderer {
     GLuint mesh_vbo, mesh_ibo, proxy_vbo, proxy_ibo, cap_vbo, cap_ibo, quad_vbo;
     GLuint project_vbo;   /* the SH projection's 6 x 27 rectangles, with their constants */
     GLuint tail_tex;
+    /* The model's own colours (mesh->colors): the vertex layout, and its
+     * texture (0: none) with its size on the GPU and its texels per world
+     * unit of the surface (for the entry's mip level). */
+    int albedo, vstride;
+    GLuint albedo_tex;
+    int albedo_w, albedo_h;
+    size_t albedo_bytes;
+    float albedo_texels_per_world;
     timer_query tq;
     uint8_t *tail_px;     /* TAIL_SIZE RGBA texels, rebuilt when the material changes */
     float tail_key[9];
@@ -172,11 +181,18 @@ typedef struct frame_params {
     float w0[3], w1[3], w2[3];
     float inv_eta, inset;
     float mm_per_world, blur_sigma_px;
+    float albedo_norm[3], albedo_bias; /* 1 / the colours' mean; the entry's mip bias (JD_ALBEDO) */
     float px_per_world;   /* the picture's passes' pixels per world unit at the object's centre */
     float light_map[4], shadow_bias[2];
 } frame_params;
 
 /* render_target.c */
+/* Bytes per uploaded vertex: position and normal; with colours, texture
+ * coordinates and the colour's 4 bytes too. */
+#define JDR_STRIDE_PLAIN 24
+#define JDR_STRIDE_COLOUR 36
+int jdr_vertex_stride(const jd_mesh *m);
+jd_result jdr_upload_albedo(jd_renderer *r, const jd_mesh *m, jd_arena *a, jd_error *err);
 GLuint jdr_new_texture(int w, int h, GLint filter);
 jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_depth, int linear,
                              const char *what, jd_error *err);
@@ -189,6 +205,9 @@ jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c, f
 
 /* render_draw.c */
 void jdr_bind_mesh(GLuint vbo, GLuint ibo);
+/* The vertex attributes of the whole mesh from byte `at` of its buffer
+ * (a chunk's first vertex): position, normal and, with colours, 2 and 3. */
+void jdr_mesh_attributes(const jd_renderer *r, size_t at);
 void jdr_bind_quad(const jd_renderer *r);
 void jdr_count_target(jd_renderer *r, const char *what, int w, int h);
 void jdr_use_target(jd_renderer *r, const target *t, const char *what);

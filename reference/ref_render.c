@@ -26,6 +26,9 @@ struct jd_ref {
     jd_bvh bvh;
     jd_ref_point *pts;
     float *pt_n;         /* outward normal per sample (before the octree reorders pts) */
+    /* sqrt(reflectance / mean) per sample where the model has colours (the
+     * light entering there), else NULL. */
+    float *pt_alb;
     jd_diffusion diff;
     jd_dipole dp;
     jd_scene_view view;
@@ -163,6 +166,17 @@ static int mesh_is_closed(const jd_ref *r)
     return closed;
 }
 
+/* A model's colours (jd_mesh.colors) scale the light under its surface by
+ * sqrt(A / mean A) where it enters and again where it leaves: the
+ * renderer's formulation (d'Eon, Luebke and Enderton 2007's pre- and
+ * post-scatter texturing), here exact at both points. */
+static void albedo_factor(const jd_ref *r, uint32_t tri, float u, float v, float out[3])
+{
+    const jd_mesh *m = r->d.mesh;
+    jd_mesh_albedo_at(m, tri, u, v, out);
+    for (int k = 0; k < 3; k++) out[k] = sqrtf(out[k] / m->albedo_mean[k]);
+}
+
 /* Schlick transmittance, as jade's shader has it. */
 static float fresnel_t(const jd_ref *r, float cosv)
 {
@@ -207,7 +221,7 @@ static void irr_chunk(void *ctx, long b, long e, uint64_t *evals)
         for (int k = 0; k < 3; k++) { pw[k] = p->p[k]; n[k] = r->pt_n[6 * i + k]; ng[k] = r->pt_n[6 * i + 3 + k]; }
         irradiance(r, pw, n, ng, ei);
         for (int k = 0; k < 3; k++) {
-            p->ea[k] = ei[k] * p->area;
+            p->ea[k] = ei[k] * p->area * (r->pt_alb ? r->pt_alb[3 * i + k] : 1.0f);
             p->p[k] = pw[k] * r->mm_per_world; /* the octree works in millimetres */
         }
     }
@@ -299,6 +313,11 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
         return jd_fail(err, JD_ERR_BUDGET, "out of memory for %u irradiance samples", n);
     }
     double area_mm2 = total / (n ? n : 1) * mm2;
+    if (m->colors && !(r->pt_alb = malloc(sizeof(float) * 3 * (n ? n : 1)))) {
+        free(sp);
+        jd_ref_destroy(r);
+        return jd_fail(err, JD_ERR_BUDGET, "out of memory for %u irradiance samples", n);
+    }
     for (uint32_t k = 0; k < n; k++) {
         float p[3], nn[3], ng[3];
         surface_at(r, sp[k].tri, sp[k].u, sp[k].v, p, nn, ng);
@@ -306,6 +325,7 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
         memcpy(r->pt_n + 6 * k, nn, sizeof nn);
         memcpy(r->pt_n + 6 * k + 3, ng, sizeof ng);
         r->pts[k].area = (float)area_mm2;
+        if (r->pt_alb) albedo_factor(r, sp[k].tri, sp[k].u, sp[k].v, r->pt_alb + 3 * (size_t)k);
     }
     free(sp);
     r->st.samples = n;
@@ -333,7 +353,7 @@ void jd_ref_destroy(jd_ref *r)
     if (!r) return;
     jd_diffusion_free(&r->diff);
     jd_bvh_free(&r->bvh);
-    free(r->pos); free(r->nrm); free(r->tri); free(r->pts); free(r->pt_n);
+    free(r->pos); free(r->nrm); free(r->tri); free(r->pts); free(r->pt_n); free(r->pt_alb);
     free(r);
 }
 
@@ -355,49 +375,86 @@ typedef struct px_ctx {
     float tan_half, aspect;
 } px_ctx;
 
-static void px_rows(void *ctx, long b, long e, uint64_t *evals)
+/* The linear colour along the ray through picture point (fx, fy) (pixel
+ * units, top left 0): 1 where it hits the object, 0 (the background) where
+ * not. */
+/* The camera's ray through picture point (fx, fy), in pixels from the top left. */
+static void ray_dir(const px_ctx *c, float fx, float fy, float dir[3])
 {
-    px_ctx *c = ctx;
+    float sx = (2.0f * fx / c->r->d.width - 1.0f) * c->tan_half * c->aspect;
+    float sy = (1.0f - 2.0f * fy / c->r->d.height) * c->tan_half;
+    for (int k = 0; k < 3; k++) dir[k] = c->fwd[k] + sx * c->right[k] + sy * c->up[k];
+    normalize3(dir);
+}
+
+static int pixel_ray(px_ctx *c, float fx, float fy, float o[3], uint64_t *evals)
+{
     jd_ref *r = c->r;
     const jd_scene *s = &r->d.scene;
-    int w = r->d.width, h = r->d.height;
     float shin = r->view.shininess, expo = r->view.exposure;
     float bg[3];
     /* The clear colour is written as sqrt(background): background is past the shoulder. */
     for (int k = 0; k < 3; k++) bg[k] = jd_shoulder_inverse(s->background[k]);
+    float dir[3];
+    ray_dir(c, fx, fy, dir);
+    jd_hit hit;
+    if (!jd_bvh_intersect(&r->bvh, c->eye, dir, 0.0f, 1e30f, &hit)) {
+        memcpy(o, bg, sizeof bg);
+        return 0;
+    }
+    float p[3], n[3], ng[3], ev[3], xm[3], mo[3];
+    surface_at(r, hit.tri, hit.u, hit.v, p, n, ng);
+    irradiance(r, p, n, ng, ev);
+    for (int k = 0; k < 3; k++) xm[k] = p[k] * r->mm_per_world;
+    *evals += jd_diffusion_exitance(&r->diff, xm, ev, mo);
+    if (r->d.mesh->colors) {
+        float fo[3];
+        albedo_factor(r, hit.tri, hit.u, hit.v, fo);
+        for (int k = 0; k < 3; k++) mo[k] *= fo[k];
+    }
+    /* Seen from the camera's side, as jade's shader does. */
+    float v[3] = {-dir[0], -dir[1], -dir[2]}, nv[3];
+    float sgn = dot3(n, v) < 0 ? -1.0f : 1.0f;
+    for (int k = 0; k < 3; k++) nv[k] = sgn * n[k];
+    float ft = fresnel_t(r, dot3(nv, v)) / r->fresnel_norm;
+    float ndl = fmaxf(dot3(nv, r->light), 0.0f), hv[3];
+    for (int k = 0; k < 3; k++) hv[k] = r->light[k] + v[k];
+    normalize3(hv);
+    /* The highlight is the light's mirror image: none in shadow. */
+    float spec = ndl > 0 && light_visible(r, p, ng)
+                     ? s->specular * powf(fmaxf(dot3(nv, hv), 0.0f), shin) * s->light_intensity
+                     : 0.0f;
+    for (int k = 0; k < 3; k++) o[k] = (ft * mo[k] + spec) * expo;
+    return 1;
+}
+
+static int center_hit(px_ctx *c, int x, int y)
+{
+    float dir[3];
+    ray_dir(c, x + 0.5f, y + 0.5f, dir);
+    jd_hit hit;
+    return jd_bvh_intersect(&c->r->bvh, c->eye, dir, 0.0f, 1e30f, &hit);
+}
+
+static void px_rows(void *ctx, long b, long e, uint64_t *evals)
+{
+    px_ctx *c = ctx;
+    jd_ref *r = c->r;
+    int w = r->d.width;
     for (long y = b; y < e; y++) {
         for (int x = 0; x < w; x++) {
             float *o = c->linear + 3 * ((size_t)y * w + x);
-            float sx = (2.0f * (x + 0.5f) / w - 1.0f) * c->tan_half * c->aspect;
-            float sy = (1.0f - 2.0f * (y + 0.5f) / h) * c->tan_half;
-            float dir[3];
-            for (int k = 0; k < 3; k++) dir[k] = c->fwd[k] + sx * c->right[k] + sy * c->up[k];
-            normalize3(dir);
-            jd_hit hit;
-            if (!jd_bvh_intersect(&r->bvh, c->eye, dir, 0.0f, 1e30f, &hit)) {
-                memcpy(o, bg, sizeof bg);
-                if (c->mask) c->mask[(size_t)y * w + x] = 0;
-                continue;
-            }
-            float p[3], n[3], ng[3], ev[3], xm[3], mo[3];
-            surface_at(r, hit.tri, hit.u, hit.v, p, n, ng);
-            irradiance(r, p, n, ng, ev);
-            for (int k = 0; k < 3; k++) xm[k] = p[k] * r->mm_per_world;
-            *evals += jd_diffusion_exitance(&r->diff, xm, ev, mo);
-            /* Seen from the camera's side, as jade's shader does. */
-            float v[3] = {-dir[0], -dir[1], -dir[2]}, nv[3];
-            float sgn = dot3(n, v) < 0 ? -1.0f : 1.0f;
-            for (int k = 0; k < 3; k++) nv[k] = sgn * n[k];
-            float ft = fresnel_t(r, dot3(nv, v)) / r->fresnel_norm;
-            float ndl = fmaxf(dot3(nv, r->light), 0.0f), hv[3];
-            for (int k = 0; k < 3; k++) hv[k] = r->light[k] + v[k];
-            normalize3(hv);
-            /* The highlight is the light's mirror image: none in shadow. */
-            float spec = ndl > 0 && light_visible(r, p, ng)
-                             ? s->specular * powf(fmaxf(dot3(nv, hv), 0.0f), shin) * s->light_intensity
-                             : 0.0f;
-            for (int k = 0; k < 3; k++) o[k] = (ft * mo[k] + spec) * expo;
-            if (c->mask) c->mask[(size_t)y * w + x] = 255;
+            int ns = r->d.pixel_samples > 1 ? r->d.pixel_samples : 1, hits = 0;
+            float acc[3] = {0, 0, 0};
+            for (int sy_i = 0; sy_i < ns; sy_i++)
+                for (int sx_i = 0; sx_i < ns; sx_i++) {
+                    float ox = (sx_i + 0.5f) / ns, oy = (sy_i + 0.5f) / ns, px[3];
+                    if (pixel_ray(c, x + ox, y + oy, px, evals)) hits++;
+                    for (int k = 0; k < 3; k++) acc[k] += px[k];
+                }
+            for (int k = 0; k < 3; k++) o[k] = acc[k] / (float)(ns * ns);
+            /* The object's pixels: where its centre ray hits, as with one ray. */
+            if (c->mask) c->mask[(size_t)y * w + x] = ns == 1 ? (hits ? 255 : 0) : center_hit(c, x, y) ? 255 : 0;
         }
     }
 }

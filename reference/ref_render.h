@@ -27,6 +27,8 @@ typedef struct jd_ref_desc {
     uint32_t samples;        /* [0: one per (0.3 mm)^2 of surface, 20,000 to 400,000] */
     float error;             /* [0.01] octree: largest node area / distance^2 summed as one */
     float window_mm;         /* [0: 2.5 mm or 3 sample spacings] near-field window r0 */
+    int pixel_samples;       /* [1] N x N rays a pixel on a regular grid, averaged in linear light:
+                                the edges of a colour texture's pattern as a filtered texture shows them */
     int threads;             /* [0: every core] */
     int progress;            /* a live progress bar on stderr */
     uint32_t seed;           /* sample placement */

@@ -17,6 +17,17 @@ varying vec3 v_normal;
 // depth: moving it sideways would move the edges of cast shadows.
 // w: the surface's own light depth.
 varying vec4 v_shadow;
+#if JD_ALBEDO
+// The model's own colour (docs/textures.md): the vertex's reflectance over
+// the surface's mean, and the texture's weight; the texture's coordinates.
+attribute vec4 a_color;        // sqrt of the reflectance, texture weight
+uniform vec3 u_albedo_norm;    // 1 / the surface's mean reflectance
+varying vec4 v_col;
+#if JD_ALBEDO_MAP
+attribute vec2 a_uv;
+varying vec2 v_uv;
+#endif
+#endif
 #if JD_FULL && !JD_WIDE_ONLY
 // full's two Fresnel factors per vertex (the fragment stage keeps the
 // normal's detail for the highlight and the shadow): the light's
@@ -66,6 +77,12 @@ varying vec3 v_dir;          // where the irradiance is looked up
 
 void main()
 {
+#if JD_ALBEDO
+    v_col = vec4(a_color.rgb * a_color.rgb * u_albedo_norm, a_color.a);
+#if JD_ALBEDO_MAP
+    v_uv = a_uv;
+#endif
+#endif
     v_pos = a_position;
     v_normal = a_normal;
     gl_Position = u_mvp * vec4(a_position, 1.0);

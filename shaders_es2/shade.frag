@@ -58,6 +58,30 @@ uniform vec3 u_ls[2];        // per level: depth units to sigma_k sqrt(2), level
 #endif
 #endif
 
+#if JD_ALBEDO
+varying vec4 v_col;          // reflectance / mean at the vertex, texture weight
+#if JD_ALBEDO_MAP
+uniform sampler2D u_albedo_map; // sqrt of the reflectance
+uniform float u_albedo_bias; // mip levels from the exit's texel to the profile's reach
+varying vec2 v_uv;
+#endif
+// The light under the surface scaled by its colour where it leaves and
+// where it entered, sqrt(A_out) sqrt(A_in) / mean A (d'Eon, Luebke and
+// Enderton 2007, pre- and post-scatter texturing). The entry's sqrt(A) is
+// the profile-weighted mean around the point: half the colour at the point
+// (the profile's peak), half the texture's mean over its 60% radius (a
+// coarser mip level), as jade reference measured it (docs/textures.md).
+vec3 albedo_factor()
+{
+#if JD_ALBEDO_MAP
+    vec3 t0 = texture2D(u_albedo_map, v_uv).rgb;
+    vec3 t = t0 * (0.5 * t0 + 0.5 * texture2D(u_albedo_map, v_uv, u_albedo_bias).rgb);
+    return v_col.rgb * mix(vec3(1.0), t, v_col.a);
+#else
+    return v_col.rgb;
+#endif
+}
+#endif
 
 #if JD_TRANSLUCENT
 // A0: the per-vertex part times the dipole tail of the thickness, which comes
@@ -87,6 +111,12 @@ void main()
     // compiler, tools/device-shaders.sh; this one holds every variant
     // within its six registers.)
     vec4 sp = texture2D(u_spread, gl_FragCoord.xy * u_inv_viewport);
+#endif
+#if JD_ALBEDO && !JD_SPREAD
+    // Read first, where no other value is live yet (lima spilled 1:3 with
+    // the reads where they are used); dual reads its spread layer first
+    // instead, and these where they are used.
+    vec3 alb = albedo_factor();
 #endif
     vec3 n = normalize(v_normal);
     vec3 v = normalize(u_eye - v_pos);
@@ -118,10 +148,20 @@ void main()
     return;
 #else
     vec3 mo = u_albedo * u_shading.x + u_light_color * (u_wl * (v_fresnel.x * vis) + wide);
+#if JD_ALBEDO
+    mo *= alb;
+#endif
     vec3 col = v_fresnel.y * mo + u_shading.y * spec * u_light_color;
 #endif
 #else
+#if JD_ALBEDO
+#if JD_SPREAD
+    vec3 alb = albedo_factor();
+#endif
+    vec3 col = u_albedo * alb * (u_shading.x + ndl * vis * u_light_color) + u_shading.y * spec * u_light_color;
+#else
     vec3 col = u_albedo * (u_shading.x + ndl * vis * u_light_color) + u_shading.y * spec * u_light_color;
+#endif
 #endif
 #if JD_TRANSLUCENT
     vec3 a0 = translucency();
@@ -135,6 +175,9 @@ void main()
     // refraction box-projected to wherever the capture is brightest) would
     // light single pixels that flicker as the light moves; the Fresnel
     // transmittance there is near zero anyway, per fragment.
+#if JD_ALBEDO
+    a0 *= alb;
+#endif
     col += a0 * smoothstep(0.0, 0.25, dot(n, v));
 #endif
 #if !JD_WIDE_ONLY

@@ -146,12 +146,16 @@ rows() { # DRIVER UNROLL
     awk -v drv="$1" -v rc="$(cat "$cache/$1.$2.rc")" '
         function flush() {
             if (label == "") return
+            if (again) { label = ""; return }
             if (status == "") status = "ok"
             printf "%-14s %-62s vs %4s fs %4s spills %3d fills %3d %s %s %-9s %s\n", drv, label, vs == "" ? "-" : vs,
                    fs == "" ? "-" : fs, spills, fills, vc == "" ? "-" : vc, fc == "" ? "-" : fc, extra == "" ? "-" : extra, status
             label = ""
         }
-        /^jade: compiling program / { flush(); label = $4 $5; vs = fs = vc = fc = extra = status = ""; spills = fills = 0; next }
+        # A program built again (jade info --compile builds the colour
+        # variants with a second renderer) keeps its first row.
+        /^jade: compiling program / { flush(); label = $4 $5; vs = fs = vc = fc = extra = status = ""; spills = fills = 0
+                                      again = ($5 in seen); seen[$5] = 1; next }
         /shader compiler: / {
             line = $0; sub(/.*shader compiler: /, "", line)
             if (line ~ /COORD|^BVERT/) next   # vc4, freedreno: the binning copy of the vertex shader

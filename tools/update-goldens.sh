@@ -12,4 +12,8 @@ for mode in none single dual full; do
             --fragment-thickness >/dev/null
     done
 done
+for mode in none single dual full; do
+    ./build/jade render --mesh assets/textured/pebble.gltf --out "tests/golden/pebble_${mode}.png" --size 256x256 \
+        --mode "$mode" --light-azimuth 150 --light-elevation 30 --precision highp >/dev/null 2>&1
+done
 ls -la tests/golden

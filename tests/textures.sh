@@ -1,0 +1,96 @@
+#!/bin/sh
+# A model's own colours: jade's textured pebble (assets/textured/) as glTF
+# (texture in a data: URI), OBJ + MTL + PNG and PLY with vertex colours
+# renders coloured in every mode, the glTF and the OBJ as the same picture
+# (the OBJ's v counts from the bottom), the texture changes the picture
+# against the same shape without it; the glTF's image as a file beside it
+# and through a bufferView; a colour factor without a texture; an explicit
+# --material keeps its own coefficients and takes the texture as the
+# pattern. Hostile textures: a PNG and a JPEG declaring 100000 x 100000 and
+# 65500 x 65500 pixels (decode bombs) refused within a second, with little
+# memory; a broken PNG, a texture file outside the folder, refused by name.
+jade=$1 assets=$2
+. "$(dirname "$0")/harness.sh"
+field() { sed -n "s/.*\"$1\": \([-0-9.e]*\).*/\1/p"; }
+render() { out=$1; shift; "$jade" render --size 96x96 --out "$out" "$@" >"$tmp/out" 2>&1; }
+peb=$assets/textured
+cp "$peb/pebble.gltf" "$peb/pebble.obj" "$peb/pebble.mtl" "$peb/pebble.png" "$peb/pebble_colours.ply" "$tmp/"
+for m in none single dual full; do
+    if render "$tmp/g_$m.png" --mesh "$tmp/pebble.gltf" --mode $m && grep -q "material from the model's colours" "$tmp/out" &&
+        render "$tmp/o_$m.png" --mesh "$tmp/pebble.obj" --mode $m; then
+        r=$("$jade" metric "$tmp/o_$m.png" "$tmp/g_$m.png" | field rmse)
+        if awk "BEGIN { exit !($r < 0.002) }"; then ok "$m: the glTF and the OBJ+MTL+PNG give the same picture (RMSE $r)"
+        else bad "$m: glTF and OBJ differ by RMSE $r"; fi
+    else bad "$m: $(cat "$tmp/out")"; fi
+done
+# The same shape without colours (jade convert keeps only the shape), in the
+# material the colours gave: the texture must show.
+"$jade" convert "$tmp/pebble.gltf" "$tmp/plain.drc" >/dev/null 2>&1
+sig=$(sed -n "s/.*sigma_s' \([0-9.e-]*\) \([0-9.e-]*\) \([0-9.e-]*\), sigma_a \([0-9.e-]*\) \([0-9.e-]*\) \([0-9.e-]*\) per mm.*/--sigma-s \1,\2,\3 --sigma-a \4,\5,\6/p" "$tmp/out" | head -1)
+# shellcheck disable=SC2086
+if [ -n "$sig" ] && render "$tmp/plain.png" --mesh "$tmp/plain.drc" $sig; then
+    r=$("$jade" metric "$tmp/plain.png" "$tmp/g_full.png" | field rmse)
+    if awk "BEGIN { exit !($r > 0.01) }"; then ok "the texture shows: RMSE $r against the uncoloured shape in the same material"
+    else bad "the texture does not show (RMSE $r)"; fi
+else bad "uncoloured pebble: $(cat "$tmp/out")"; fi
+if render "$tmp/ply.png" --mesh "$tmp/pebble_colours.ply" && grep -q "material from the model's colours" "$tmp/out"; then
+    r=$("$jade" metric "$tmp/ply.png" "$tmp/g_full.png" | field rmse)
+    if awk "BEGIN { exit !($r < 0.03) }"; then ok "the PLY's vertex colours: close to the textured picture (RMSE $r)"
+    else bad "PLY colours: RMSE $r against the glTF"; fi
+else bad "PLY colours: $(cat "$tmp/out")"; fi
+# The image beside the glTF, then through a bufferView of a buffer file.
+sed 's|"uri":"data:image/png;base64,[^"]*"|"uri":"pebble.png"|' "$tmp/pebble.gltf" > "$tmp/beside.gltf"
+n=$(wc -c < "$tmp/pebble.png")
+sed "s|\"images\":\[{\"uri\":\"data:image/png;base64,[^\"]*\"}\]|\"images\":[{\"bufferView\":4,\"mimeType\":\"image/png\"}]|; s|\"buffers\":\[|\"buffers\":[|; s|\"bufferViews\":\[|\"bufferViews\":[|" "$tmp/pebble.gltf" |
+    sed "s|\(\"buffers\":\[{[^]]*}\)\]|\1,{\"byteLength\":$n,\"uri\":\"pebble.png\"}]|; s|\(\"bufferViews\":\[.*\"byteLength\":[0-9]*}\)\],\"accessors\"|\1,{\"buffer\":1,\"byteLength\":$n}],\"accessors\"|" > "$tmp/view.gltf"
+for f in beside view; do
+    if render "$tmp/$f.png" --mesh "$tmp/$f.gltf"; then
+        r=$("$jade" metric "$tmp/$f.png" "$tmp/g_full.png" | field rmse)
+        if [ "$r" = "0.000000" ]; then ok "$f.gltf: the same picture as the data: URI"; else bad "$f.gltf: RMSE $r"; fi
+    else bad "$f.gltf: $(cat "$tmp/out")"; fi
+done
+# A colour factor alone: a uniform reflectance, the material from it.
+sed 's|"baseColorTexture":{"index":0},|"baseColorFactor":[0.8,0.2,0.1,1],|' "$tmp/pebble.gltf" > "$tmp/factor.gltf"
+if render "$tmp/f.png" --mesh "$tmp/factor.gltf" && grep -q "mean reflectance 0.8\(00\)* 0.2\(00\)* 0.1\(00\)* \|mean reflectance 0.799 0.2 0.101" "$tmp/out"; then
+    ok "a base colour factor gives the material its reflectance"
+else bad "factor: $(cat "$tmp/out")"; fi
+# An explicit material keeps its coefficients; the texture still patterns it.
+if render "$tmp/s.png" --mesh "$tmp/pebble.gltf" --material skin1 && grep -q ", skin1," "$tmp/out" &&
+    ! grep -q "material from the model" "$tmp/out"; then ok "--material skin1 wins over the colours' material"
+else bad "--material: $(cat "$tmp/out")"; fi
+# Hostile textures, each in the glTF's place of the real one.
+with_image() { # NAME DATA_URI_OR_FILE
+    sed "s|\"uri\":\"data:image/png;base64,[^\"]*\"|\"uri\":\"$2\"|" "$tmp/pebble.gltf" > "$tmp/$1.gltf"
+}
+# 60 bytes: the PNG signature, an IHDR chunk declaring 100000 x 100000 RGB,
+# an IDAT chunk with no data and IEND.
+{ printf '\211PNG\r\n\032\n\000\000\000\015IHDR\000\001\206\240\000\001\206\240\010\002\000\000\000\000\000\000\000'
+  printf '\000\000\000\000IDAT\000\000\000\000\000\000\000\000IEND\256B`\202'; } > "$tmp/bomb.png"
+# A JPEG's start, a frame header (SOF0) declaring 65500 x 65500, 3 components.
+{ printf '\377\330\377\300\000\021\010\377\334\377\334\003\001\042\000\002\021\001\003\021\001'
+  printf '\377\304\000\024\000\001\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\377\331'; } > "$tmp/bomb.jpg"
+head -c 200 "$tmp/pebble.png" > "$tmp/broken.png"
+for b in bomb.png bomb.jpg; do
+    with_image "$b" "$b"
+    t0=$(date +%s%N)
+    /usr/bin/time -f '%M' -o "$tmp/rss" "$jade" convert "$tmp/$b.gltf" "$tmp/x.drc" >"$tmp/out" 2>&1
+    rc=$?
+    ms=$(( ($(date +%s%N) - t0) / 1000000 ))
+    kb=$(tail -1 "$tmp/rss")
+    if [ $rc -ne 0 ] && grep -q "over jade's limit" "$tmp/out" && [ "$ms" -lt 1000 ] && [ "$kb" -lt 65536 ]; then
+        ok "$b ($(wc -c < "$tmp/$b") bytes) refused in $ms ms, $kb KiB at most: $(head -1 "$tmp/out")"
+    else bad "$b: exit $rc, $ms ms, $kb KiB: $(cat "$tmp/out")"; fi
+done
+with_image broken broken.png
+if ! "$jade" convert "$tmp/broken.gltf" "$tmp/x.drc" >"$tmp/out" 2>&1 && grep -q "does not decode" "$tmp/out"; then
+    ok "a cut PNG refused: $(head -1 "$tmp/out")"
+else bad "broken PNG: $(cat "$tmp/out")"; fi
+with_image escape ../pebble.png
+if ! "$jade" convert "$tmp/escape.gltf" "$tmp/x.drc" >"$tmp/out" 2>&1 && grep -q "not a plain relative file name" "$tmp/out"; then
+    ok "an image outside the glTF's folder refused"
+else bad "escape: $(cat "$tmp/out")"; fi
+printf 'newmtl veined\nmap_Kd /etc/passwd\n' > "$tmp/pebble.mtl"
+if ! "$jade" convert "$tmp/pebble.obj" "$tmp/x.drc" >"$tmp/out" 2>&1 && grep -q "map_Kd" "$tmp/out"; then
+    ok "an MTL texture by absolute path refused: $(head -1 "$tmp/out")"
+else bad "MTL escape: $(cat "$tmp/out")"; fi
+finish textures
