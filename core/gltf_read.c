@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "draco_shim.h"
+#include "file_beside.h"
 #include "mesh_format.h"
 #include "texture_decode.h"
 
@@ -138,60 +139,25 @@ static int load_data_uri(gltf *g, int i, const char *uri, blob *b)
     return 0;
 }
 
-/* A buffer (or, with need SIZE_MAX, an image: the whole file) beside the
- * glTF: a relative name that stays in its folder. */
+/* A buffer (at least `need` bytes) or, with need SIZE_MAX, an image file
+ * beside the glTF (file_beside.h). */
 static int load_file_uri(gltf *g, int i, const char *uri, size_t need, blob *b)
 {
     const char *kind = need == SIZE_MAX ? "image" : "buffer";
-    if (uri[0] == '/' || strstr(uri, "..") || strchr(uri, '\\') || strchr(uri, ':') || strchr(uri, '%'))
-        return fail(g, "glTF %s %d: uri '%.200s' is not a plain relative file name; refused", kind, i, uri);
     if (!g->path)
         return fail(g, "glTF %s %d: uri '%.200s' names a file, but the glTF came from memory; embed the "
                        "%s (GLB, or a data: URI)", kind, i, uri, kind);
-    char full[8192];
-    const char *slash = strrchr(g->path, '/');
-    int dir = slash ? (int)(slash - g->path + 1) : 0;
-    if (snprintf(full, sizeof full, "%.*s%s", dir, g->path, uri) >= (int)sizeof full)
-        return fail(g, "glTF %s %d: path too long", kind, i);
-    int fd = open(full, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd < 0) return fail(g, "glTF %s %d: cannot open %s: %s", kind, i, full, strerror(errno));
-    struct stat st;
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        close(fd);
-        return fail(g, "glTF %s %d: %s is not a regular file", kind, i, full);
-    }
-    if (need == SIZE_MAX) {
-        need = (size_t)st.st_size;
-        if (need > g->lim->max_buffer_bytes) {
-            close(fd);
-            return fail(g, "glTF image %d: %s has %zu bytes, over the limit of %zu", i, full, need, g->lim->max_buffer_bytes);
-        }
-    }
-    if ((size_t)st.st_size < need) {
-        close(fd);
-        return fail(g, "glTF buffer %d: %s has %lld bytes, the file declares %zu", i, full, (long long)st.st_size, need);
-    }
-    if (g->loaded_bytes + need > g->lim->max_buffer_bytes) {
-        close(fd);
+    size_t room = g->lim->max_buffer_bytes - g->loaded_bytes, len = 0;
+    if (need != SIZE_MAX && need > room)
         return fail(g, "glTF buffers add up to more than %zu bytes", g->lim->max_buffer_bytes);
-    }
-    b->owned = malloc(need ? need : 1);
-    if (!b->owned) {
-        close(fd);
-        return fail(g, "out of memory");
-    }
-    size_t got = 0;
-    while (got < need) {
-        ssize_t k = read(fd, b->owned + got, need - got);
-        if (k < 0 && errno == EINTR) continue;
-        if (k <= 0) break;
-        got += (size_t)k;
-    }
-    close(fd);
-    if (got < need) return fail(g, "glTF %s %d: %s could not be read whole", kind, i, full);
-    g->loaded_bytes += need;
+    char why[400];
+    b->owned = jd_file_beside(g->path, uri, room, &len, why, sizeof why);
+    if (!b->owned) return fail(g, "glTF %s %d: %s", kind, i, why);
+    if (need != SIZE_MAX && len < need)
+        return fail(g, "glTF %s %d: '%.200s' has %zu bytes, the file declares %zu", kind, i, uri, len, need);
+    b->size = need == SIZE_MAX ? len : need;
+    g->loaded_bytes += b->size;
     b->data = b->owned;
-    b->size = need;
     return 0;
 }
 

@@ -1,13 +1,10 @@
 #include "obj_material.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
+#include "file_beside.h"
 #include "texture_decode.h"
 
 static void note(jd_mesh_arrays *m, const char *what)
@@ -16,51 +13,6 @@ static void note(jd_mesh_arrays *m, const char *what)
     size_t cap = sizeof m->medium.ignored, k = strlen(buf);
     if (!strstr(buf, what)) snprintf(buf + k, cap - k, "%s%s", k ? "; " : "", what);
     m->medium.flags |= JD_MEDIUM_NOTE;
-}
-
-/* A file beside the OBJ, whole, or NULL with a reason. */
-static uint8_t *read_beside(const char *obj_path, const char *name, size_t max_bytes, size_t *len, char *why,
-                            size_t cap)
-{
-    if (!name[0] || name[0] == '/' || strstr(name, "..") || strchr(name, '\\') || strchr(name, ':') || strchr(name, '%')) {
-        snprintf(why, cap, "'%.100s' is not a plain relative file name", name);
-        return NULL;
-    }
-    char full[4096];
-    const char *slash = strrchr(obj_path, '/');
-    int dir = slash ? (int)(slash - obj_path + 1) : 0;
-    if (snprintf(full, sizeof full, "%.*s%s", dir, obj_path, name) >= (int)sizeof full) {
-        snprintf(why, cap, "path too long");
-        return NULL;
-    }
-    int fd = open(full, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd < 0) {
-        snprintf(why, cap, "cannot open %.200s: %s", full, strerror(errno));
-        return NULL;
-    }
-    struct stat st;
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size <= 0 || (size_t)st.st_size > max_bytes) {
-        snprintf(why, cap, "%.200s is not a regular file of at most %zu bytes", full, max_bytes);
-        close(fd);
-        return NULL;
-    }
-    size_t n = (size_t)st.st_size, got = 0;
-    uint8_t *b = malloc(n + 1);
-    while (b && got < n) {
-        ssize_t k = read(fd, b + got, n - got);
-        if (k < 0 && errno == EINTR) continue;
-        if (k <= 0) break;
-        got += (size_t)k;
-    }
-    close(fd);
-    if (!b || got != n) {
-        snprintf(why, cap, "%.200s could not be read whole", full);
-        free(b);
-        return NULL;
-    }
-    b[n] = 0;
-    *len = n;
-    return b;
 }
 
 /* The next line of text[*at..n) with its keyword and the rest (trimmed). */
@@ -107,7 +59,7 @@ int jd_obj_material(const uint8_t *obj, size_t n, const char *obj_path, uint32_t
     }
     char why[300];
     size_t len = 0;
-    uint8_t *mtl = read_beside(obj_path, lib, 1u << 20, &len, why, sizeof why);
+    uint8_t *mtl = jd_file_beside(obj_path, lib, 1u << 20, &len, why, sizeof why);
     if (!mtl) {
         char what[400];
         snprintf(what, sizeof what, "its material library (%s)", why);
@@ -141,7 +93,7 @@ int jd_obj_material(const uint8_t *obj, size_t n, const char *obj_path, uint32_t
     int textured = map[0] && m->uv;
     if (map[0] && !m->uv) note(m, "map_Kd (the mesh has no texture coordinates)");
     if (textured) {
-        uint8_t *img = read_beside(obj_path, map, max_bytes, &len, why, sizeof why);
+        uint8_t *img = jd_file_beside(obj_path, map, max_bytes, &len, why, sizeof why);
         if (!img) {
             snprintf(err, errlen, "the material's map_Kd: %s", why);
             return -1;

@@ -6,7 +6,7 @@
 # decoded arrays they share), which run only in the sandboxed child process
 # during loading.
 lib=$1
-bad=$(nm -A "$lib" 2>/dev/null | grep -v -E '(draco_shim|gltf_read|mesh_arrays|ply_strips|obj_check|texture_decode|obj_material)' | grep -E ' U (malloc|calloc|realloc|free|aligned_alloc|posix_memalign|strdup|_Znwm|_Znam|_ZdlPv|_ZdaPv|fopen)$')
+bad=$(nm -A "$lib" 2>/dev/null | grep -v -E '(draco_shim|gltf_read|mesh_arrays|ply_strips|obj_check|texture_decode|obj_material|file_beside)' | grep -E ' U (malloc|calloc|realloc|free|aligned_alloc|posix_memalign|strdup|_Znwm|_Znam|_ZdlPv|_ZdaPv|fopen)$')
 objects=$(nm -A "$lib" 2>/dev/null | cut -d: -f2 | sort -u | wc -l)
 if [ -n "$bad" ]; then
     echo "core objects reference the heap:"
