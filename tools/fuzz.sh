@@ -9,7 +9,7 @@ set -eu
 cd "$(dirname "$0")/.."
 seconds=${1:-3600}
 [ $# -gt 0 ] && shift
-targets=${*:-fuzz_draco_header fuzz_metadata fuzz_mesh_load fuzz_mesh_text fuzz_gltf fuzz_image fuzz_options}
+targets=${*:-fuzz_draco_header fuzz_metadata fuzz_mesh_load fuzz_mesh_text fuzz_gltf fuzz_image fuzz_options fuzz_texture}
 if ! command -v clang >/dev/null || ! command -v clang++ >/dev/null; then
     echo "fuzz: clang is not installed (Debian: clang libclang-rt-14-dev)"
     exit 77

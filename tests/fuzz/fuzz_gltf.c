@@ -10,7 +10,7 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    jd_gltf_limits lim = {100000, 100000, 16u << 20};
+    jd_gltf_limits lim = {100000, 100000, 16u << 20, 64};
     jd_mesh_arrays m;
     char err[512];
     if (jd_gltf_read(data, size, "/nonexistent-jade-fuzz/x.gltf", &lim, &m, err, sizeof err) == 0)

@@ -8,7 +8,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 c=$here/corpus
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-mkdir -p "$c/fuzz_draco_header" "$c/fuzz_metadata" "$c/fuzz_mesh_load" "$c/fuzz_mesh_text" "$c/fuzz_gltf" "$c/fuzz_image" "$c/fuzz_options"
+mkdir -p "$c/fuzz_draco_header" "$c/fuzz_metadata" "$c/fuzz_mesh_load" "$c/fuzz_mesh_text" "$c/fuzz_gltf" "$c/fuzz_image" "$c/fuzz_options" \
+    "$c/fuzz_texture"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1/1 3/3/1 2/2/1\nf 1/1/1 2/2/1 4/3/1\nf 1/1/1 4/3/1 3/2/1\nf 2/2/1 3/3/1 4/1/1\n' > "$tmp/tet.obj"
 draco_encoder -i "$tmp/tet.obj" -o "$tmp/seq.drc" -cl 0 >/dev/null
 draco_encoder -i "$tmp/tet.obj" -o "$tmp/eb.drc" -cl 7 >/dev/null
@@ -129,6 +130,31 @@ raw = b''.join(b'\x00' + bytes([x * 60, y * 60, 90, 255]) * 1 + bytes([200, 10, 
 png = b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', 2, 2, 8, 6, 0, 0, 0)) + \
       chunk(b'IDAT', zlib.compress(raw)) + chunk(b'IEND', b'')
 open(f'{d}/tiny.png', 'wb').write(png)
+PY
+# Colour textures: the PNG above, and a JPEG (baseline and progressive)
+# written by stb_image_write; a glTF tetrahedron with the PNG as its base
+# colour texture in a data: URI.
+cp "$c/fuzz_image/tiny.png" "$c/fuzz_texture/tiny.png"
+cat > "$tmp/jpg.c" <<'C'
+#include <stb_image_write.h>
+int main(int argc, char **argv)
+{
+    unsigned char px[8 * 8 * 3];
+    for (int i = 0; i < 8 * 8 * 3; i++) px[i] = (unsigned char)(i * 37);
+    (void)argc;
+    return !stbi_write_jpg(argv[1], 8, 8, 3, px, 80);
+}
+C
+cc -o "$tmp/jpg" "$tmp/jpg.c" $(pkg-config --cflags --libs stb) && "$tmp/jpg" "$c/fuzz_texture/tiny.jpg"
+python3 - "$c" <<'PY'
+import sys, base64, json
+c = sys.argv[1]
+g = json.load(open(f'{c}/fuzz_gltf/tet.gltf'))
+png = open(f'{c}/fuzz_texture/tiny.png', 'rb').read()
+g['materials'] = [{'pbrMetallicRoughness': {'baseColorTexture': {'index': 0}, 'baseColorFactor': [1, 0.5, 0.5, 1]}}]
+g['textures'] = [{'source': 0}]
+g['images'] = [{'uri': 'data:image/png;base64,' + base64.b64encode(png).decode()}]
+open(f'{c}/fuzz_gltf/tet_texture.gltf', 'w').write(json.dumps(g))
 PY
 # Argument lists: the first byte picks the command (0 render, 1 bench,
 # 2 info, 3 view, 4 kiosk, 5 reference, 6 metric), then NUL-separated words.

@@ -1,0 +1,16 @@
+/* libFuzzer: the colour texture decoder itself, in process (the loader runs
+ * it in a child): the PNG and JPEG headers' size checks, stb_image's
+ * decoders behind them, the resampling to powers of two. */
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "texture_decode.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static const float one[3] = {1, 1, 1};
+    jd_texture t;
+    char err[256];
+    if (jd_texture_decode(data, size, one, 64, "the fuzzed picture", &t, err, sizeof err) == 0) free(t.texels);
+    return 0;
+}
