@@ -81,6 +81,22 @@ for b in bomb.png bomb.jpg; do
         ok "$b ($(wc -c < "$tmp/$b") bytes) refused in $ms ms, $kb KiB at most: $(head -1 "$tmp/out")"
     else bad "$b: exit $rc, $ms ms, $kb KiB: $(cat "$tmp/out")"; fi
 done
+# A JPEG that crashed the copy of stb_image inside Debian's libdraco (found
+# by fuzz_texture): the core links libstb first, whose decoder refuses it;
+# and every library jade builds names libstb before libdraco.
+cp "$(dirname "$0")/fuzz/corpus/fuzz_texture/draco-stb-crash.jpg" "$tmp/huff.jpg"
+with_image huff huff.jpg
+if ! "$jade" convert "$tmp/huff.gltf" "$tmp/x.drc" >"$tmp/out" 2>&1 && grep -q "does not decode" "$tmp/out"; then
+    ok "a JPEG with a bad Huffman table refused by Debian's stb_image: $(head -1 "$tmp/out")"
+else bad "huff.jpg: $(cat "$tmp/out")"; fi
+for lib in "$jade" "$(dirname "$jade")/libjade.so"; do
+    [ -f "$lib" ] || continue
+    order=$(readelf -d "$lib" 2>/dev/null | sed -n 's/.*Shared library: \[\(libstb\|libdraco\)\..*/\1/p' | tr '\n' ' ')
+    case "$order" in
+        "libstb libdraco "|"") ok "$(basename "$lib"): stb_image from libstb (${order:-static})" ;;
+        *) bad "$(basename "$lib") takes stb_image from whichever comes first: $order" ;;
+    esac
+done
 with_image broken broken.png
 if ! "$jade" convert "$tmp/broken.gltf" "$tmp/x.drc" >"$tmp/out" 2>&1 && grep -q "does not decode" "$tmp/out"; then
     ok "a cut PNG refused: $(head -1 "$tmp/out")"
