@@ -105,6 +105,13 @@ printf '{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{
     "$(base64 -w0 "$out/kiosk_hup.bin")" > "$out/kiosk_hup.gltf"
 hup "${base}mesh = $out/kiosk_hup.gltf\n" $k
 hup "${base}mesh = $out/kiosk_hup.gltf\nlight-speed = 10\n" $((k + 1))
+# jade's textured pebble: its colour texture is made and, at the next mesh,
+# deleted with the renderer (the GL object count below); the material its
+# colours give holds through a re-read that keeps it.
+peb=$(cd "$(dirname "$0")/.." && pwd)/assets/textured/pebble.gltf
+hup "${base}mesh = $peb\n" $((k + 2))
+hup "${base}mesh = $peb\nlight-speed = 5\n" $((k + 3))
+hup "${base}mesh = $out/kiosk_hup.gltf\n" $((k + 4))
 sleep 1
 kill -TERM "$pid"
 wait "$pid"
@@ -117,6 +124,7 @@ check "a broken file is named and changes nothing" "line 5: unknown option '--bo
 check "a display option waits for a restart" "connector changed; that takes effect at the next start"
 check "a new mesh is drawn" "mesh $out/kiosk_hup_cube.obj"
 check "the file's material holds when the mesh stays" "mesh $out/kiosk_hup.gltf, material ketchup, light speed 10"
+check "a model's colours give its material, and it holds when the mesh stays" "mesh $peb, material colour, light speed 5"
 gl_first=$(grep -m1 "new GL objects" "$out/kiosk_hup.out" | sed 's/.*new GL objects //')
 gl_last=$(grep "new GL objects" "$out/kiosk_hup.out" | tail -1 | sed 's/.*new GL objects //')
 if [ "$rc" -eq 0 ] && [ "$gl_last" = "0/0/0/0" ]; then
