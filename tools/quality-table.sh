@@ -1,8 +1,11 @@
 #!/bin/sh
 # The quality table: how far jade's none, single, dual and full modes are from the
 # CPU reference (the full dipole BSSRDF), for the bunny in marble, skin1,
-# ketchup and whole milk, front-lit and back-lit. Long (a reference per case):
-# run on demand, not by the tests.
+# ketchup and whole milk, front-lit and back-lit, and the bunny given
+# jade's veined colour texture (tools/textured-mesh.sh) in the material its
+# colours give and in skin1, whose references take 2 x 2 rays a pixel (the
+# texture's edges). Long (a reference per case): run on demand, not by the
+# tests.
 #
 #   tools/quality-table.sh [OUT_DIR]      (SIZE=512x512, BUILD=build by default)
 #   cmake --build build --target quality  (the same, into build/quality)
@@ -39,42 +42,51 @@ field() { sed -n "s/.*\"$1\": \([-0-9.e]*\).*/\1/p"; }
     echo "|---|---|---|---|---|---|---|---|---|"
 } > "$table.tmp"
 verdicts=""
-for mat in $materials; do
+# one_case NAME MESH MATERIAL_OPTIONS REFERENCE_OPTIONS: its two lights.
+one_case() {
+    cname=$1 mesh=$2 matopt=$3 refopt=$4
     for l in $lights; do
         name=${l%%:*}; rest=${l#*:}; az=${rest%%:*}; el=${rest#*:}
-        scene="--mesh $bunny --size $size --material $mat --light-azimuth $az --light-elevation $el"
-        base=$out/${mat}_$name
-        echo "== $mat, $name-lit" >&2
+        scene="--mesh $mesh --size $size $matopt --light-azimuth $az --light-elevation $el"
+        base=$out/${cname}_$name
+        echo "== $cname, $name-lit" >&2
         if [ "${KEEP:-0}" != 1 ] || [ ! -f "$base.reference.png" ] || [ ! -f "$base.mask.png" ]; then
             # shellcheck disable=SC2086
-            "$jade" reference $scene --out "$base.reference.png" --pfm "$base.reference.pfm" --mask "$base.mask.png" --quiet >&2
+            "$jade" reference $scene $refopt --out "$base.reference.png" --pfm "$base.reference.pfm" --mask "$base.mask.png" --quiet >&2
         fi
         rmse_of=""
         for mode in $modes; do
             # shellcheck disable=SC2086
-            "$jade" render $scene $render_opts --mode $mode --out "$base.$mode.png" >/dev/null
+            "$jade" render $scene $render_opts --mode $mode --out "$base.$mode.png" >/dev/null 2>&1
             m=$("$jade" metric "$base.$mode.png" "$base.reference.png" --mask "$base.mask.png")
             echo "$m" > "$base.$mode.json"
             rmse=$(echo "$m" | field rmse); psnr=$(echo "$m" | field psnr_db); ssim=$(echo "$m" | field ssim)
             k=$(echo "$m" | field best_scale); rk=$(echo "$m" | field rmse_scaled); sk=$(echo "$m" | field ssim_scaled)
             printf '| %s | %s | %s | %.4f | %.2f | %.4f | %.3f | %.4f | %.4f |\n' \
-                "$mat" "$name" "$mode" "$rmse" "$psnr" "$ssim" "$k" "$rk" "$sk" >> "$table.tmp"
+                "$cname" "$name" "$mode" "$rmse" "$psnr" "$ssim" "$k" "$rk" "$sk" >> "$table.tmp"
             rmse_of="$rmse_of $rmse:$rk:$ssim"
         done
         [ "$modes" = "none single dual full" ] || continue
         # shellcheck disable=SC2086
-        "$jade" render $scene $render_opts --sheet "$out/sheet_${mat}_$name.png" --sheet-reference "$base.reference.png" >/dev/null
+        "$jade" render $scene $render_opts --sheet "$out/sheet_${cname}_$name.png" --sheet-reference "$base.reference.png" >/dev/null 2>&1
         # The paper's claims, per case: single closer than none, dual closer
         # than single; and jade's: full closer than dual and than none, its
         # structure (SSIM) closer than dual's.
-        verdicts="$verdicts$(echo "$rmse_of" | awk -v c="$mat, $name-lit" '
+        verdicts="$verdicts$(echo "$rmse_of" | awk -v c="$cname, $name-lit" '
             function v(x) { return x ? "yes" : "**no**" }
             { split($1, n, ":"); split($2, s, ":"); split($3, d, ":"); split($4, f, ":");
               printf "| %s | %s | %s | %s | %s | %s | %.2f |\n", c, v(s[1] < n[1]), v(d[1] < s[1]), v(f[1] < d[1]),
                      v(f[1] < n[1]), v(f[3] > d[3]), f[1] / n[1] }')
 "
     done
-done
+}
+for mat in $materials; do one_case "$mat" "$bunny" "--material $mat" ""; done
+if [ "${TEXTURED:-1}" = 1 ]; then
+    textured=$out/textured/bunny_tex.obj
+    sh "$root/tools/textured-mesh.sh" "$root/../shared/testdata/meshes/stanford-bunny.obj" "$textured"
+    one_case "textured-colour" "$textured" "" "--pixel-samples 2"
+    one_case "textured-skin1" "$textured" "--material skin1" "--pixel-samples 2"
+fi
 {
     cat "$table.tmp"
     echo
