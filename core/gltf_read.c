@@ -744,10 +744,12 @@ static int load_texture(gltf *g)
     blob b = {0};
     const cJSON *uri = get(img, "uri");
     int ii = (int)get(g->textures.item[ti], "source")->valuedouble;
+    /* A reader that fails may have allocated already (a data: URI bad
+     * half-way): the image's bytes are this function's to free. */
     if (cJSON_IsString(uri) && !strncmp(uri->valuestring, "data:", 5)) {
-        if (load_data_uri(g, ii, uri->valuestring, &b)) return -1;
+        if (load_data_uri(g, ii, uri->valuestring, &b)) { free(b.owned); return -1; }
     } else if (cJSON_IsString(uri)) {
-        if (load_file_uri(g, ii, uri->valuestring, SIZE_MAX, &b)) return -1;
+        if (load_file_uri(g, ii, uri->valuestring, SIZE_MAX, &b)) { free(b.owned); return -1; }
     } else if (get(img, "bufferView")) {
         size_t size;
         if (view_bytes(g, get(img, "bufferView"), &b.data, &size, NULL)) return -1;
