@@ -4,7 +4,8 @@
 # the vc4 profile draws it in 16-bit chunks and must give the very picture
 # this device gives with 32-bit indices and no profile (no seam: vc4's
 # limits change nothing else in full mode here); the mali400 and generic
-# profiles render it; the default memory budget grows to hold it.
+# profiles render it; the default memory budget grows to hold it. The
+# same with a colour texture: the chunks carry its coordinates and colours.
 jade=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -32,6 +33,27 @@ if cmp -s "$tmp/device.png" "$tmp/vc4.png"; then
     pass=$((pass + 1)); echo "ok   16-bit chunks (vc4) give the 32-bit picture byte for byte"
 else
     fail=$((fail + 1)); echo "FAIL the chunked picture differs: $("$jade" metric "$tmp/vc4.png" "$tmp/device.png")"
+fi
+# The same sphere with jade's veined texture (texture coordinates and an
+# MTL): the chunks carry the coordinates and colours too, no seam.
+cp "$(dirname "$0")/../assets/textured/pebble.png" "$tmp/veined.png"
+printf 'newmtl veined\nmap_Kd veined.png\n' > "$tmp/veined.mtl"
+{ echo "mtllib veined.mtl"; grep '^v ' "$tmp/sphere.obj"
+  awk 'BEGIN { n = 500; m = 500
+      for (i = 0; i <= n; i++) for (j = 0; j < m; j++) printf "vt %.6f %.6f\n", 3 * j / m, 1 - i / n
+      print "usemtl veined"
+      for (i = 0; i < n; i++) for (j = 0; j < m; j++) {
+          a = i * m + j + 1; b = i * m + (j + 1) % m + 1; c = (i + 1) * m + j + 1; d = (i + 1) * m + (j + 1) % m + 1
+          printf "f %d/%d %d/%d %d/%d\nf %d/%d %d/%d %d/%d\n", a, a, c, c, b, b, b, b, c, c, d, d } }'; } > "$tmp/textured.obj"
+for prof in device vc4; do
+    if "$jade" render --mesh "$tmp/textured.obj" --size 256x256 --decode-timeout-ms 60000 $([ "$prof" = device ] || echo --profile "$prof") \
+        --out "$tmp/tex_$prof.png" >"$tmp/out" 2>&1 && grep -q "colour texture" "$tmp/out"; then :
+    else fail=$((fail + 1)); echo "FAIL textured $prof: $(cat "$tmp/out")"; fi
+done
+if [ -f "$tmp/tex_vc4.png" ] && cmp -s "$tmp/tex_device.png" "$tmp/tex_vc4.png"; then
+    pass=$((pass + 1)); echo "ok   textured: 16-bit chunks (vc4) give the 32-bit picture byte for byte"
+else
+    fail=$((fail + 1)); echo "FAIL the textured chunked picture differs"
 fi
 echo "big mesh: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
