@@ -61,7 +61,12 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         glBindTexture(GL_TEXTURE_2D, r->tail_tex);
         glActiveTexture(GL_TEXTURE0);
     }
-    if (p->albedo_norm >= 0) glUniform3fv(p->albedo_norm, 1, f->albedo_norm);
+    if (p->albedo_norm >= 0) {
+        /* With the texture, the fragment stage's entry mean (t0 + t1) / 2
+         * takes its halving from here: one multiply fewer per fragment. */
+        float k = p->albedo_map >= 0 ? 0.5f : 1.0f;
+        glUniform3f(p->albedo_norm, k * f->albedo_norm[0], k * f->albedo_norm[1], k * f->albedo_norm[2]);
+    }
     if (p->albedo_map >= 0) {
         glUniform1i(p->albedo_map, 7);
         glUniform1f(p->albedo_bias, f->albedo_bias);

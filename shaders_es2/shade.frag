@@ -59,7 +59,7 @@ uniform vec3 u_ls[2];        // per level: depth units to sigma_k sqrt(2), level
 #endif
 
 #if JD_ALBEDO
-varying vec4 v_col;          // reflectance / mean at the vertex, texture weight
+varying vec4 v_col;          // reflectance / mean at the vertex (halved with the texture), texture weight
 #if JD_ALBEDO_MAP
 uniform sampler2D u_albedo_map; // sqrt of the reflectance
 uniform float u_albedo_bias; // mip levels from the exit's texel to the profile's reach
@@ -75,8 +75,8 @@ vec3 albedo_factor()
 {
 #if JD_ALBEDO_MAP
     vec3 t0 = texture2D(u_albedo_map, v_uv).rgb;
-    vec3 t = t0 * (0.5 * t0 + 0.5 * texture2D(u_albedo_map, v_uv, u_albedo_bias).rgb);
-    return v_col.rgb * mix(vec3(1.0), t, v_col.a);
+    vec3 t = t0 * (t0 + texture2D(u_albedo_map, v_uv, u_albedo_bias).rgb);
+    return v_col.rgb * mix(vec3(2.0), t, v_col.a);
 #else
     return v_col.rgb;
 #endif
