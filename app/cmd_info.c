@@ -33,8 +33,8 @@ static void on_program(void *user, const char *vs, const char *fs, const char *d
 }
 
 /* The picture's programs for a model with its own colours (JD_ALBEDO,
- * JD_ALBEDO_MAP): a second renderer on the same mesh given a colour per
- * vertex and a 4 x 4 texture. Its other programs are the first renderer's
+ * JD_ALBEDO_MAP, JD_ALBEDO_PARTIAL): more renderers on the same mesh given
+ * a colour per vertex and a 4 x 4 texture. Its other programs are the first renderer's
  * over again; the compiler table keeps the first of each name. */
 static int compile_colour_variants(jd_session *s, jd_options *o)
 {
@@ -48,7 +48,7 @@ static int compile_colour_variants(jd_session *s, jd_options *o)
         fprintf(stderr, "jade info: %s\n", err.msg);
         return 0;
     }
-    memset(m.colors, 200, 4 * nv);
+    for (size_t i = 0; i < nv; i++) memcpy(m.colors + 4 * i, (const uint8_t[4]){200, 200, 200, 255}, 4);
     if (!s->mesh.uvs) memset(m.uvs, 0, sizeof(float) * 2 * nv);
     memset(m.texels, 200, 4 * 4 * 4);
     m.texture_w = m.texture_h = 4;
@@ -60,12 +60,17 @@ static int compile_colour_variants(jd_session *s, jd_options *o)
     rd.height = o->height;
     rd.max_width = o->width;
     rd.max_height = o->height;
-    jd_renderer *r = NULL;
-    if (jd_renderer_create(&rd, &s->arena, &r, &err)) {
-        fprintf(stderr, "jade info: the colour variants: %s\n", err.msg);
-        return 0;
+    /* Twice: every vertex textured, then one not (a model whose materials
+     * are partly untextured). */
+    for (int partial = 0; partial < 2; partial++) {
+        m.colors[3] = partial ? 0 : 255;
+        jd_renderer *r = NULL;
+        if (jd_renderer_create(&rd, &s->arena, &r, &err)) {
+            fprintf(stderr, "jade info: the colour variants: %s\n", err.msg);
+            return 0;
+        }
+        jd_renderer_destroy(r);
     }
-    jd_renderer_destroy(r);
     return 1;
 }
 

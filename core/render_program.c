@@ -136,9 +136,10 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
     snprintf(def, sizeof def,
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
              "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
-             "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO %d\n#define JD_ALBEDO_MAP %d\n",
+             "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO %d\n#define JD_ALBEDO_MAP %d\n"
+             "#define JD_ALBEDO_PARTIAL %d\n",
              r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
-             m == JD_MODE_FULL && !r->vertex_diffusion, r->albedo, r->albedo && map);
+             m == JD_MODE_FULL && !r->vertex_diffusion, r->albedo, r->albedo && map, r->albedo && map && r->albedo_partial);
     /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel] [v_wide] [v_col] [v_uv] */
     int varyings = translucent ? (r->vertex_thickness ? 5 : 6)
                                : 3 + (m == JD_MODE_FULL) + (m == JD_MODE_FULL && r->vertex_diffusion);
@@ -227,7 +228,7 @@ static jd_result build_spread(jd_renderer *r, jd_error *err)
     snprintf(def, sizeof def,
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 1\n#define JD_SPREAD 0\n#define JD_A0_ONLY 1\n"
              "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL 0\n#define JD_VERTEX_DIFFUSION 0\n"
-             "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n",
+             "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n#define JD_ALBEDO_PARTIAL 0\n",
              r->highp, r->vertex_thickness);
     if ((res = build(r, r->vertex_thickness ? 5 : 6, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def,
                      mesh_attribs, &r->a0.id, err)))
@@ -263,7 +264,7 @@ static jd_result build_full(jd_renderer *r, jd_error *err)
         snprintf(def, sizeof def,
                  "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 0\n#define JD_SPREAD 0\n#define JD_A0_ONLY 0\n"
                  "#define JD_VERTEX_THICKNESS 0\n#define JD_FULL 1\n#define JD_VERTEX_DIFFUSION 0\n"
-                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n",
+                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n#define JD_ALBEDO_PARTIAL 0\n",
                  r->highp);
         if ((res = build(r, 3, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
                          err)))

@@ -126,6 +126,8 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     r->proxy_error = 0.87f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius / (float)d->proxy_cells;
     r->fit_key[0] = -1.0f;
     r->albedo = m->colors != NULL;
+    for (uint32_t i = 0; r->albedo && m->texels && i < m->num_vertices && !r->albedo_partial; i++)
+        r->albedo_partial = m->colors[4 * (size_t)i + 3] != 255;
     r->vstride = jdr_vertex_stride(m);
     while (glGetError() != GL_NO_ERROR) {}
     if ((chunked ? (res = jdr_upload_mesh_chunked(r, m, c, 1.0f / radius, a, err))

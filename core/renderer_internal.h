@@ -101,6 +101,7 @@ struct jd_renderer {
      * texture (0: none) with its size on the GPU and its texels per world
      * unit of the surface (for the entry's mip level). */
     int albedo, vstride;
+    int albedo_partial;   /* some vertices' texture weight is 0 (partly untextured materials) */
     GLuint albedo_tex;
     int albedo_w, albedo_h;
     size_t albedo_bytes;

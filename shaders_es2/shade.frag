@@ -76,7 +76,13 @@ vec3 albedo_factor()
 #if JD_ALBEDO_MAP
     vec3 t0 = texture2D(u_albedo_map, v_uv).rgb;
     vec3 t = t0 * (t0 + texture2D(u_albedo_map, v_uv, u_albedo_bias).rgb);
+#if JD_ALBEDO_PARTIAL
+    // Some materials untextured: their vertices' weight 0 takes the
+    // texture out (2: the uniform's halving undone).
     return v_col.rgb * mix(vec3(2.0), t, v_col.a);
+#else
+    return v_col.rgb * t;
+#endif
 #else
     return v_col.rgb;
 #endif

@@ -54,6 +54,16 @@ sed 's|"baseColorTexture":{"index":0},|"baseColorFactor":[0.8,0.2,0.1,1],|' "$tm
 if render "$tmp/f.png" --mesh "$tmp/factor.gltf" && grep -q "mean reflectance 0.8\(00\)* 0.2\(00\)* 0.1\(00\)* \|mean reflectance 0.799 0.2 0.101" "$tmp/out"; then
     ok "a base colour factor gives the material its reflectance"
 else bad "factor: $(cat "$tmp/out")"; fi
+# Two pebbles, the second with an untextured material (a red factor): one
+# texture, the second's vertices weighing it 0 (the partial program).
+sed 's|"scenes":\[{"nodes":\[0\]}\],"nodes":\[{"mesh":0}\]|"scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0},{"mesh":1,"translation":[0,1.3,0]}]|;
+     s|"material":0}\]}\]|"material":0}]},{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2},"indices":3,"material":1}]}]|;
+     s|"metallicFactor":0}}\]|"metallicFactor":0}},{"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.25,0.2,1]}}]|' \
+    "$tmp/pebble.gltf" > "$tmp/two.gltf"
+if render "$tmp/two.png" --mesh "$tmp/two.gltf" && grep -q "4608 triangles" "$tmp/out" && grep -q "colour texture" "$tmp/out"; then
+    r=$("$jade" metric "$tmp/two.png" "$tmp/g_full.png" | field rmse)
+    ok "a textured and an untextured material in one model: one texture, both drawn (RMSE $r against the one pebble)"
+else bad "two materials: $(cat "$tmp/out")"; fi
 # An explicit material keeps its coefficients; the texture still patterns it.
 if render "$tmp/s.png" --mesh "$tmp/pebble.gltf" --material skin1 && grep -q ", skin1," "$tmp/out" &&
     ! grep -q "material from the model" "$tmp/out"; then ok "--material skin1 wins over the colours' material"
