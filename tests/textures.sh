@@ -9,7 +9,7 @@
 # pattern. Hostile textures: a PNG and a JPEG declaring 100000 x 100000 and
 # 65500 x 65500 pixels (decode bombs) refused within a second, with little
 # memory; a broken PNG, a texture file outside the folder, refused by name.
-jade=$1 assets=$2 gen_checker=${3:-}
+jade=$1 assets=$2 gen_textured=${3:-}
 . "$(dirname "$0")/harness.sh"
 field() { sed -n "s/.*\"$1\": \([-0-9.e]*\).*/\1/p"; }
 render() { out=$1; shift; "$jade" render --size 96x96 --out "$out" "$@" >"$tmp/out" 2>&1; }
@@ -74,8 +74,8 @@ else bad "--material: $(cat "$tmp/out")"; fi
 # with its mipmaps said. (llvmpipe keeps texture coordinates at 32 bits
 # even where its canary finds 16-bit arithmetic: this is not a check of
 # fp16 precision, docs/textures.md.)
-if [ -n "$gen_checker" ]; then
-    "$gen_checker" "$tmp/chk0.gltf" 0 && "$gen_checker" "$tmp/chk6.gltf" 6
+if [ -n "$gen_textured" ]; then
+    "$gen_textured" --checker "$tmp/chk0.gltf" 0 && "$gen_textured" --checker "$tmp/chk6.gltf" 6
     for c in chk0 chk6; do
         "$jade" render --mesh "$tmp/$c.gltf" --mode none --size 256x256 --fit 1 --cam-azimuth 0 --cam-elevation 0 \
             --profile mali400 --out "$tmp/$c.png" >"$tmp/$c.out" 2>&1

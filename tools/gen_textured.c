@@ -1,9 +1,11 @@
 /* jade's own textured test models (assets/textured/): a pebble, an egg
  * flattened on one side and thin at one end, with a veined colour texture;
  * written as a glTF with everything embedded, an OBJ with its MTL and PNG,
- * and a PLY with vertex colours. Run by tools/make_textured_assets.sh.
+ * and a PLY with vertex colours. Run by tools/make_textured_assets.sh. With
+ * --checker, the test model of tests/textures.sh (built by the tests).
  *
- *   gen_textured OUTDIR */
+ *   gen_textured OUTDIR
+ *   gen_textured --checker OUT.gltf SHIFT */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,7 +13,7 @@
 
 #include <stb_image_write.h>
 
-enum { SEG = 48, RING = 24, TEX = 128 };
+enum { SEG = 48, RING = 24, TEX = 128, CHECKER = 1024 };
 #define NV ((SEG + 1) * (RING + 1))
 #define NT (SEG * RING * 2)
 
@@ -114,9 +116,70 @@ static FILE *out(const char *dir, const char *name)
     return f;
 }
 
+/* A thin box whose front face's texture coordinates run over [0.875, 1) +
+ * shift in both directions (128 of the texture's 1024 texels, where a
+ * 16-bit float's steps are coarsest below 1), the texture a checker of
+ * single texels, embedded: tests/textures.sh checks that the loader moves
+ * coordinates by whole tiles. */
+static int checker(const char *out, float shift)
+{
+    unsigned char *tex = malloc(CHECKER * CHECKER * 3);
+    for (int y = 0; y < CHECKER; y++)
+        for (int x = 0; x < CHECKER; x++) {
+            unsigned char *o = tex + 3 * (y * CHECKER + x);
+            int on = (x + y) & 1;
+            o[0] = on ? 240 : 40;
+            o[1] = on ? 200 : 60;
+            o[2] = on ? 120 : 90;
+        }
+    struct { unsigned char *p; size_t n; } png = {0, 0};
+    stbi_write_png_to_func(collect, &png, CHECKER, CHECKER, 3, tex, CHECKER * 3);
+    /* A thin box (so that it has a volume and an outside), its front face
+     * textured; positions, normals, coordinates, then 16-bit indices. */
+    float lo = 0.875f + shift, hi = 1.0f + shift - 1.0f / CHECKER;
+    float v[8][8] = {
+        {-1, -1, 0.05f, 0, 0, 1, lo, hi}, {1, -1, 0.05f, 0, 0, 1, hi, hi}, {1, 1, 0.05f, 0, 0, 1, hi, lo}, {-1, 1, 0.05f, 0, 0, 1, lo, lo},
+        {-1, -1, -0.05f, 0, 0, -1, lo, hi}, {1, -1, -0.05f, 0, 0, -1, hi, hi}, {1, 1, -0.05f, 0, 0, -1, hi, lo}, {-1, 1, -0.05f, 0, 0, -1, lo, lo}};
+    unsigned short idx[] = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 4, 5, 0, 5, 1, 1, 5, 6, 1, 6, 2, 2, 6, 7, 2, 7, 3, 3, 7, 4, 3, 4, 0};
+    unsigned char buf[8 * 32 + sizeof idx];
+    float pos[8][3], nrm[8][3], uv[8][2];
+    for (int i = 0; i < 8; i++) {
+        memcpy(pos[i], v[i], 12);
+        memcpy(nrm[i], v[i] + 3, 12);
+        memcpy(uv[i], v[i] + 6, 8);
+    }
+    memcpy(buf, pos, 96);
+    memcpy(buf + 96, nrm, 96);
+    memcpy(buf + 192, uv, 64);
+    memcpy(buf + 256, idx, sizeof idx);
+    char *bb = b64(buf, sizeof buf), *pb = b64(png.p, png.n);
+    FILE *f = fopen(out, "w");
+    if (!f) { perror(out); return 1; }
+    fprintf(f,
+            "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2},\"indices\":3,"
+            "\"material\":0}]}],\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+            "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+            "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+            "\"bufferViews\":[{\"buffer\":0,\"byteLength\":96},{\"buffer\":0,\"byteOffset\":96,\"byteLength\":96},"
+            "{\"buffer\":0,\"byteOffset\":192,\"byteLength\":64},{\"buffer\":0,\"byteOffset\":256,\"byteLength\":%zu}],"
+            "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":8,\"type\":\"VEC3\",\"min\":[-1,-1,-0.05],"
+            "\"max\":[1,1,0.05]},{\"bufferView\":1,\"componentType\":5126,\"count\":8,\"type\":\"VEC3\"},"
+            "{\"bufferView\":2,\"componentType\":5126,\"count\":8,\"type\":\"VEC2\"},"
+            "{\"bufferView\":3,\"componentType\":5123,\"count\":36,\"type\":\"SCALAR\"}]}\n",
+            pb, sizeof buf, bb, sizeof idx);
+    fclose(f);
+    free(tex);
+    free(png.p);
+    free(bb);
+    free(pb);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
-    if (argc != 2) { fprintf(stderr, "usage: gen_textured OUTDIR\n"); return 2; }
+    if (argc == 4 && !strcmp(argv[1], "--checker")) return checker(argv[2], (float)atof(argv[3]));
+    if (argc != 2) { fprintf(stderr, "usage: gen_textured OUTDIR | --checker OUT.gltf SHIFT\n"); return 2; }
     const char *dir = argv[1];
     build();
     struct { unsigned char *p; size_t n; } png = {0, 0};
