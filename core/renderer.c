@@ -125,6 +125,7 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
      * surface between, by about half of that. */
     r->proxy_error = 0.87f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius / (float)d->proxy_cells;
     r->fit_key[0] = -1.0f;
+    r->albedo_key[0] = -1.0f;
     r->albedo = m->colors != NULL;
     for (uint32_t i = 0; r->albedo && m->texels && i < m->num_vertices && !r->albedo_partial; i++)
         r->albedo_partial = m->colors[4 * (size_t)i + 3] != 255;
@@ -273,6 +274,35 @@ void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
     info->proxy = &r->proxy;
 }
 
+/* The light leaving a point entered around it: the entry's colour takes the
+ * texture's mean out to the profile's 60% radius (where jd_dipole_tail
+ * falls to 40% of Rd_total) in the channel that reaches furthest (skin1's
+ * red, whose mean free path is 3.7 mm, its blue's 0.7: on the textured
+ * bunny in skin1 the red's radius came 4.7% closer to the reference than
+ * green's, the same in the marble-like material), read from the mip level
+ * whose texel spans it (docs/textures.md). The radius is found again only
+ * when the material changes. */
+static void albedo_bias(jd_renderer *r, const jd_scene *s, frame_params *f)
+{
+    float key[8] = {s->sigma_s[0], s->sigma_s[1], s->sigma_s[2], s->sigma_a[0], s->sigma_a[1], s->sigma_a[2], s->eta,
+                    s->density};
+    if (memcmp(key, r->albedo_key, sizeof key)) {
+        memcpy(r->albedo_key, key, sizeof key);
+        double reach = 0.0;
+        for (int c = 0; c < 3; c++) {
+            double a = 0.0, b = 1e4, want = 0.4 * jd_dipole_tail(&f->dipole, c, 0.0);
+            for (int i = 0; i < 48; i++) {
+                double mid = 0.5 * (a + b);
+                if (jd_dipole_tail(&f->dipole, c, mid) > want) a = mid; else b = mid;
+            }
+            if (a > reach) reach = a;
+        }
+        r->albedo_reach_mm = (float)reach;
+    }
+    double texels = r->albedo_reach_mm / f->mm_per_world * r->albedo_texels_per_world;
+    f->albedo_bias = texels > 1.0 ? (float)log2(texels) : 0.0f;
+}
+
 static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f)
 {
     /* A panel mounted at 90 or 270 degrees shows the picture sideways: the
@@ -327,29 +357,8 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
     f->light_map[3] = 0.5f * r->proxy_error;
     f->shadow_bias[0] = 1.5f / lsz;
     f->shadow_bias[1] = 0.5f * r->proxy_error;
-    if (r->albedo) {
-        const jd_mesh *m = r->d.mesh;
-        for (int c = 0; c < 3; c++) f->albedo_norm[c] = 1.0f / m->albedo_mean[c];
-        /* The light leaving a point entered around it: the entry's colour
-         * takes the texture's mean out to the profile's 60% radius (where
-         * jd_dipole_tail falls to 40% of Rd_total) in the channel that
-         * reaches furthest (skin1's red, whose mean free path is 3.7 mm,
-         * its blue's 0.7: on the textured bunny in skin1 the red's radius
-         * came 4.7% closer to the reference than green's, the same in the
-         * marble-like material),
-         * read from the mip level whose texel spans it (docs/textures.md). */
-        double lo = 0.0;
-        for (int c = 0; c < 3; c++) {
-            double a = 0.0, b = 1e4, want = 0.4 * jd_dipole_tail(&o.dipole, c, 0.0);
-            for (int i = 0; i < 48; i++) {
-                double mid = 0.5 * (a + b);
-                if (jd_dipole_tail(&o.dipole, c, mid) > want) a = mid; else b = mid;
-            }
-            if (a > lo) lo = a;
-        }
-        double texels = lo / f->mm_per_world * r->albedo_texels_per_world;
-        f->albedo_bias = texels > 1.0 ? (float)log2(texels) : 0.0f;
-    }
+    if (r->albedo)
+        for (int c = 0; c < 3; c++) f->albedo_norm[c] = 1.0f / r->d.mesh->albedo_mean[c];
 
     /* The paper's spread width, sigma = 2 sigma_s, read as millimetres and
      * turned into pixels of the low-resolution buffer at the object's depth. */
@@ -446,6 +455,7 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *asked, jd_frame_stat
     frame_params f;
     memset(&f, 0, sizeof f);
     frame_setup(r, s, &f);
+    if (r->albedo_tex) albedo_bias(r, s, &f);
     if (stats) memset(stats, 0, sizeof *stats);
     double t = jd_clock_ms();
     /* Packed values must reach RGBA8 bit-exact: GL enables dithering by default. */
