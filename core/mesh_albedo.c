@@ -53,6 +53,33 @@ void jd_mesh_albedo_at(const jd_mesh *m, uint32_t tri, float u, float v, float o
     }
 }
 
+static double triangle_area(const jd_mesh *m, uint32_t t)
+{
+    const float *p0 = m->positions + 3 * (size_t)jd_mesh_index(m, 3 * t),
+                *p1 = m->positions + 3 * (size_t)jd_mesh_index(m, 3 * t + 1),
+                *p2 = m->positions + 3 * (size_t)jd_mesh_index(m, 3 * t + 2);
+    double e1[3], e2[3];
+    for (int c = 0; c < 3; c++) {
+        e1[c] = (double)p1[c] - p0[c];
+        e2[c] = (double)p2[c] - p0[c];
+    }
+    double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
+    return 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+}
+
+double jd_mesh_texels_per_unit(const jd_mesh *m, uint32_t w, uint32_t h)
+{
+    if (!m->uvs) return 0.0;
+    double tex_area = 0, area = 0;
+    for (uint32_t t = 0; t < m->num_indices / 3; t++) {
+        const float *u0 = m->uvs + 2 * (size_t)jd_mesh_index(m, 3 * t), *u1 = m->uvs + 2 * (size_t)jd_mesh_index(m, 3 * t + 1),
+                    *u2 = m->uvs + 2 * (size_t)jd_mesh_index(m, 3 * t + 2);
+        tex_area += 0.5 * fabs(((double)u1[0] - u0[0]) * ((double)u2[1] - u0[1]) - ((double)u2[0] - u0[0]) * ((double)u1[1] - u0[1]));
+        area += triangle_area(m, t);
+    }
+    return area > 0 ? sqrt(tex_area * w * h / area) : 0.0;
+}
+
 void jd_mesh_albedo_prepare(jd_mesh *m)
 {
     if (m->texels && m->uvs && m->num_vertices) {
@@ -69,16 +96,7 @@ void jd_mesh_albedo_prepare(jd_mesh *m)
     static const float pts[4][2] = {{1.0f / 3, 1.0f / 3}, {1.0f / 6, 1.0f / 6}, {2.0f / 3, 1.0f / 6}, {1.0f / 6, 2.0f / 3}};
     double sum[3] = {0, 0, 0}, area = 0;
     for (uint32_t t = 0; t < m->num_indices / 3; t++) {
-        const float *p0 = m->positions + 3 * (size_t)jd_mesh_index(m, 3 * t),
-                    *p1 = m->positions + 3 * (size_t)jd_mesh_index(m, 3 * t + 1),
-                    *p2 = m->positions + 3 * (size_t)jd_mesh_index(m, 3 * t + 2);
-        double e1[3], e2[3];
-        for (int c = 0; c < 3; c++) {
-            e1[c] = (double)p1[c] - p0[c];
-            e2[c] = (double)p2[c] - p0[c];
-        }
-        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
-        double a = 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+        double a = triangle_area(m, t);
         for (int k = 0; k < 4; k++) {
             float alb[3];
             jd_mesh_albedo_at(m, t, pts[k][0], pts[k][1], alb);

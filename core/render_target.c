@@ -2,9 +2,9 @@
  * renderbuffer where asked) and the mesh uploads, chunked to 16-bit
  * indices where the GPU has no 32-bit ones. */
 #include "renderer_internal.h"
+#include "mesh_albedo.h"
 #include "mesh_load.h"
 
-#include <math.h>
 #include <string.h>
 
 /* ---- start-up ---------------------------------------------------------- */
@@ -221,27 +221,12 @@ jd_result jdr_upload_albedo(jd_renderer *r, const jd_mesh *m, jd_arena *a, jd_er
         w = nw;
         h = nh;
     }
-    /* Texels per world unit of the surface (the renderer's world: the
-     * bounding sphere's radius is 1), from the areas of the triangles in
-     * both spaces. */
+    /* Texels per world unit of the surface: the renderer's world has the
+     * bounding sphere's radius as its unit. */
     jd_vec3 centre;
     float radius;
     jd_mesh_placement(m, &centre, &radius);
-    double tex_area = 0, world_area = 0;
-    for (uint32_t t = 0; t + 2 < m->num_indices; t += 3) {
-        uint32_t i0 = jd_mesh_index(m, t), i1 = jd_mesh_index(m, t + 1), i2 = jd_mesh_index(m, t + 2);
-        const float *u0 = m->uvs + 2 * (size_t)i0, *u1 = m->uvs + 2 * (size_t)i1, *u2 = m->uvs + 2 * (size_t)i2;
-        tex_area += 0.5 * fabs(((double)u1[0] - u0[0]) * ((double)u2[1] - u0[1]) - ((double)u2[0] - u0[0]) * ((double)u1[1] - u0[1]));
-        const float *p0 = m->positions + 3 * (size_t)i0, *p1 = m->positions + 3 * (size_t)i1, *p2 = m->positions + 3 * (size_t)i2;
-        double e1[3], e2[3];
-        for (int k = 0; k < 3; k++) {
-            e1[k] = (double)p1[k] - p0[k];
-            e2[k] = (double)p2[k] - p0[k];
-        }
-        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
-        world_area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz) / ((double)radius * radius);
-    }
-    r->albedo_texels_per_world = world_area > 0 ? (float)sqrt(tex_area * w * h / world_area) : 0.0f;
+    r->albedo_texels_per_world = (float)(jd_mesh_texels_per_unit(m, (uint32_t)w, (uint32_t)h) * radius);
     glGenTextures(1, &r->albedo_tex);
     glBindTexture(GL_TEXTURE_2D, r->albedo_tex);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, src);
