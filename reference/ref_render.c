@@ -373,11 +373,9 @@ typedef struct px_ctx {
     uint8_t *mask;
     float eye[3], fwd[3], right[3], up[3];
     float tan_half, aspect;
+    float bg[3];  /* the background, linear (its clear colour is sqrt(background): past the shoulder) */
 } px_ctx;
 
-/* The linear colour along the ray through picture point (fx, fy) (pixel
- * units, top left 0): 1 where it hits the object, 0 (the background) where
- * not. */
 /* The camera's ray through picture point (fx, fy), in pixels from the top left. */
 static void ray_dir(const px_ctx *c, float fx, float fy, float dir[3])
 {
@@ -387,19 +385,18 @@ static void ray_dir(const px_ctx *c, float fx, float fy, float dir[3])
     normalize3(dir);
 }
 
+/* The linear colour along the ray through picture point (fx, fy): 1 where
+ * it hits the object, 0 (the background) where not. */
 static int pixel_ray(px_ctx *c, float fx, float fy, float o[3], uint64_t *evals)
 {
     jd_ref *r = c->r;
     const jd_scene *s = &r->d.scene;
     float shin = r->view.shininess, expo = r->view.exposure;
-    float bg[3];
-    /* The clear colour is written as sqrt(background): background is past the shoulder. */
-    for (int k = 0; k < 3; k++) bg[k] = jd_shoulder_inverse(s->background[k]);
     float dir[3];
     ray_dir(c, fx, fy, dir);
     jd_hit hit;
     if (!jd_bvh_intersect(&r->bvh, c->eye, dir, 0.0f, 1e30f, &hit)) {
-        memcpy(o, bg, sizeof bg);
+        memcpy(o, c->bg, sizeof c->bg);
         return 0;
     }
     float p[3], n[3], ng[3], ev[3], xm[3], mo[3];
@@ -475,6 +472,7 @@ jd_result jd_ref_render(jd_ref *r, float *linear, uint8_t *mask, jd_ref_stats *s
     c.up[0] = up.x; c.up[1] = up.y; c.up[2] = up.z;
     c.tan_half = tanf(r->view.fov_deg * 3.14159265f / 360.0f);
     c.aspect = (float)w / (float)h;
+    for (int k = 0; k < 3; k++) c.bg[k] = jd_shoulder_inverse(r->d.scene.background[k]);
     double t0 = jd_clock_ms();
     uint64_t ev = par_run(r->st.threads, h, 1, px_rows, &c, "reference", r->d.progress);
     r->st.pixels_ms = jd_clock_ms() - t0;
