@@ -132,9 +132,9 @@ std::unique_ptr<draco::Mesh> read_mesh(draco::DecoderBuffer *buffer, int format,
     if (format == JD_FORMAT_OBJ) {
         char msg[200];
         size_t clean_n = 0;
-        if (jd_obj_strip_comments(buffer->data_head(), static_cast<size_t>(buffer->remaining_size()), &rewritten,
+        if (jd_obj_for_draco(buffer->data_head(), static_cast<size_t>(buffer->remaining_size()), &rewritten,
                                   &clean_n) < 0) {
-            set_err(err, errlen, "out of memory for the OBJ without its comments");
+            set_err(err, errlen, "out of memory for the OBJ as libdraco reads it");
             return nullptr;
         }
         if (rewritten) {

@@ -96,7 +96,14 @@ int jd_obj_check(const char *data, size_t n, char *err, size_t errlen)
     return 0;
 }
 
-int jd_obj_strip_comments(const char *data, size_t n, char **out, size_t *out_n)
+/* A line whose first word is "mtllib". */
+static int is_mtllib(const char *s, const char *end)
+{
+    while (s < end && (*s == ' ' || *s == '\t')) s++;
+    return end - s >= 7 && !memcmp(s, "mtllib", 6) && (s[6] == ' ' || s[6] == '\t');
+}
+
+int jd_obj_for_draco(const char *data, size_t n, char **out, size_t *out_n)
 {
     *out = NULL;
     *out_n = 0;
@@ -107,6 +114,7 @@ int jd_obj_strip_comments(const char *data, size_t n, char **out, size_t *out_n)
         const char *s = data + at, *end = memchr(s, '\n', n - at);
         if (!end) end = data + n;
         at = (size_t)(end - data) + 1;
+        if (is_mtllib(s, end)) any = 1;
         while (s < end && (*s == ' ' || *s == '\t')) s++;
         if (s < end && *s != '#' && memchr(s, '#', (size_t)(end - s))) any = 1;
     }
@@ -120,7 +128,7 @@ int jd_obj_strip_comments(const char *data, size_t n, char **out, size_t *out_n)
         if (!end) end = data + n;
         at = (size_t)(end - data) + 1;
         const char *hash = memchr(s, '#', (size_t)(end - s));
-        const char *stop = hash ? hash : end;
+        const char *stop = is_mtllib(s, end) ? s : hash ? hash : end;
         memcpy(o + k, s, (size_t)(stop - s));
         k += (size_t)(stop - s);
         if (has_nl) o[k++] = '\n';

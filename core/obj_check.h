@@ -16,11 +16,14 @@ extern "C" {
  * element defined before its line; -1: err says the first that is not. */
 int jd_obj_check(const char *data, size_t n, char *err, size_t errlen);
 
-/* libdraco reads a comment after a face's corners ("f 1 2 3 # top") as
- * more corners: 1 with *out (malloc'd, *out_n bytes) the file with every
- * comment cut from its line, 0 where none follows anything, -1 out of
- * memory. */
-int jd_obj_strip_comments(const char *data, size_t n, char **out, size_t *out_n);
+/* The OBJ as libdraco should see it. libdraco reads a comment after a
+ * face's corners ("f 1 2 3 # top") as more corners, and opens an `mtllib`
+ * by its name relative to the working directory (blocking on a FIFO of
+ * that name there) although jade reads the material library itself, from
+ * the OBJ's own folder (obj_material.h): 1 with *out (malloc'd, *out_n
+ * bytes) the file with every comment cut from its line and every mtllib
+ * line emptied, 0 where there is nothing to change, -1 out of memory. */
+int jd_obj_for_draco(const char *data, size_t n, char **out, size_t *out_n);
 
 #ifdef __cplusplus
 }

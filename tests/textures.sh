@@ -8,8 +8,9 @@
 # --material keeps its own coefficients and takes the texture as the
 # pattern. Hostile textures: a PNG and a JPEG declaring 100000 x 100000 and
 # 65500 x 65500 pixels (decode bombs) refused within a second, with little
-# memory; a broken PNG, a texture file outside the folder, refused by name.
-jade=$1 assets=$2 gen_textured=${3:-}
+# memory; a broken PNG, a texture file outside the folder, a FIFO, refused
+# by name; a FIFO as an OBJ's material library said, in bounded time.
+jade=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") assets=$2 gen_textured=${3:-}
 . "$(dirname "$0")/harness.sh"
 field() { sed -n "s/.*\"$1\": \([-0-9.e]*\).*/\1/p"; }
 render() { out=$1; shift; "$jade" render --size 96x96 --out "$out" "$@" >"$tmp/out" 2>&1; }
@@ -132,6 +133,22 @@ with_image escape ../pebble.png
 if ! "$jade" convert "$tmp/escape.gltf" "$tmp/x.drc" >"$tmp/out" 2>&1 && grep -q "not a plain relative file name" "$tmp/out"; then
     ok "an image outside the glTF's folder refused"
 else bad "escape: $(cat "$tmp/out")"; fi
+# FIFOs: a texture (refused by name) and a material library (said and
+# left out, the shape drawn), each in bounded time; from the OBJ's own
+# folder as the working directory, where libdraco once opened the library
+# itself and waited on the FIFO until the decode's deadline.
+mkfifo "$tmp/fifo.png"
+printf 'newmtl veined\nmap_Kd fifo.png\n' > "$tmp/pebble.mtl"
+if ! (cd "$tmp" && timeout 10 "$jade" convert pebble.obj x.drc) >"$tmp/out" 2>&1 && grep -q "fifo.png is not a regular file" "$tmp/out"; then
+    ok "a FIFO as map_Kd refused: $(head -1 "$tmp/out")"
+else bad "map_Kd FIFO: $(cat "$tmp/out")"; fi
+rm "$tmp/pebble.mtl" && mkfifo "$tmp/pebble.mtl"
+t0=$(date +%s%N)
+if (cd "$tmp" && timeout 10 "$jade" render --mesh pebble.obj --size 64x64 --out fifo_mtl.png) >"$tmp/out" 2>&1 &&
+    grep -q "pebble.mtl is not a regular file" "$tmp/out"; then
+    ok "a FIFO as the material library: said, the shape drawn, in $(( ($(date +%s%N) - t0) / 1000000 )) ms"
+else bad "MTL FIFO: $(cat "$tmp/out")"; fi
+rm "$tmp/pebble.mtl"
 printf 'newmtl veined\nmap_Kd /etc/passwd\n' > "$tmp/pebble.mtl"
 if ! "$jade" convert "$tmp/pebble.obj" "$tmp/x.drc" >"$tmp/out" 2>&1 && grep -q "map_Kd" "$tmp/out"; then
     ok "an MTL texture by absolute path refused: $(head -1 "$tmp/out")"
