@@ -81,6 +81,8 @@ static const opt table[] = {
     {"--light-elevation", T_FLOAT, OFF(scene.light_elevation), -89, 89, S, "DEG        light elevation [35]"},
     {"--light-intensity", T_FLOAT, OFF(scene.light_intensity), 0, 100, S, "X          [1]"},
     {"--exposure", T_FLOAT, OFF(scene.exposure), 0.01, 100, S, "X          [1]"},
+    {"--ambient", T_FLOAT, OFF(scene.ambient), 0, 100, S, "X          irradiance from every direction, unshadowed, in the light's units [0.06]"},
+    {"--specular", T_FLOAT, OFF(scene.specular), 0, 100, S, "X          the highlight's strength (0: none) [0.2]"},
     {"--cube-size", T_INT, OFF(rdesc.cube_size), 8, 256, R | B, "N          capture face size, multiple of 8 [64]"},
     {"--light-map", T_INT, OFF(rdesc.light_map_size), 16, 2048, R | B, "N          light depth map size [256]"},
     {"--proxy-cells", T_INT, OFF(rdesc.proxy_cells), 4, 64, R | B, "N          proxy mesh grid [40]"},

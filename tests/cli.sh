@@ -39,6 +39,15 @@ expect "did you mean" 2 "did you mean --frames?" -- "$jade" render --frame 3
 long=1.$(printf '0%.0s' $(seq 1 300))1
 expect "a long triple is read whole" 0 "wrote" -- "$jade" render --size 32x32 --out "$tmp/eq.png" --sigma-s "$long,$long,$long"
 expect "a long triple's end is checked" 2 "three numbers" -- "$jade" render --sigma-s "$long,$long,${long}x"
+# The light a path tracer is given (tools/cycles-reference.sh): no ambient,
+# no highlight; each changes the picture, in jade and in its reference.
+expect "no ambient, no highlight" 0 "wrote" -- "$jade" render --size 32x32 --out "$tmp/amb0.png" --ambient 0 --specular 0
+expect "the default ambient" 0 "wrote" -- "$jade" render --size 32x32 --out "$tmp/amb1.png"
+if cmp -s "$tmp/amb0.png" "$tmp/amb1.png"; then fail=$((fail + 1)); echo "FAIL --ambient 0 --specular 0 left the picture as it was"; else pass=$((pass + 1)); fi
+expect "reference without ambient" 0 "wrote" -- "$jade" reference --size 24x24 --samples 20000 --quiet --out "$tmp/ramb0.png" --ambient 0 --specular 0
+expect "reference with ambient" 0 "wrote" -- "$jade" reference --size 24x24 --samples 20000 --quiet --out "$tmp/ramb1.png"
+if cmp -s "$tmp/ramb0.png" "$tmp/ramb1.png"; then fail=$((fail + 1)); echo "FAIL jade reference --ambient 0 left the picture as it was"; else pass=$((pass + 1)); fi
+expect "negative ambient" 2 "--ambient: expected a number from 0 to 100" -- "$jade" render --ambient -1
 expect "a triple with four" 2 "three numbers" -- "$jade" render --sigma-s 1,2,3,4
 expect "a triple with an empty part" 2 "three numbers" -- "$jade" render --sigma-s 1,,3
 longpath=$(printf 'a/%.0s' $(seq 1 2100))
