@@ -66,10 +66,17 @@ else:
 objs = [o for o in bpy.context.scene.objects if o.type == "MESH"]
 if not objs:
     sys.exit("cycles_scene: %s: no mesh imported" % mesh_path)
-obj = objs[0]
 for o in objs:
     o.rotation_euler = (0, 0, 0)
     o.matrix_world = mathutils.Matrix.Identity(4)
+# jade reads every group of an OBJ as one mesh: so does the medium (an
+# importer makes an object per `o` line, and only one would be placed).
+obj = objs[0]
+bpy.context.view_layer.objects.active = obj
+for o in objs:
+    o.select_set(True)
+if len(objs) > 1:
+    bpy.ops.object.join()
 
 # A closed surface: Cycles tells inside from outside by the faces a ray
 # crosses, and a hole would leave a path "inside" the medium for ever (the
