@@ -461,11 +461,15 @@ jd_result jd_ref_render(jd_ref *r, float *linear, uint8_t *mask, jd_ref_stats *s
     int w = r->d.width, h = r->d.height;
     if (w < 1 || h < 1) return jd_fail(err, JD_ERR_ARG, "image size %dx%d", w, h);
     px_ctx c = {.r = r, .linear = linear, .mask = mask};
-    /* jd_m4_look_at and jd_m4_perspective, as rays. */
+    /* jd_m4_look_at and jd_m4_perspective, as rays: the view matrix's rows
+     * are the camera's right, up and backward axes (its own choice of up
+     * where the camera looks almost straight down, which a copy missed:
+     * at --pitch 89 the reference came out turned by 90 degrees). */
     jd_vec3 eye = r->view.eye;
-    jd_vec3 f = jd_v3_norm(jd_v3_sub(jd_v3(0, 0, 0), eye));
-    jd_vec3 rt = jd_v3_norm(jd_v3_cross(f, jd_v3(0, 1, 0)));
-    jd_vec3 up = jd_v3_cross(rt, f);
+    jd_mat4 view = jd_m4_look_at(eye, jd_v3(0, 0, 0), jd_v3(0, 1, 0));
+    jd_vec3 rt = jd_v3(view.m[0], view.m[4], view.m[8]);
+    jd_vec3 up = jd_v3(view.m[1], view.m[5], view.m[9]);
+    jd_vec3 f = jd_v3(-view.m[2], -view.m[6], -view.m[10]);
     c.eye[0] = eye.x; c.eye[1] = eye.y; c.eye[2] = eye.z;
     c.fwd[0] = f.x; c.fwd[1] = f.y; c.fwd[2] = f.z;
     c.right[0] = rt.x; c.right[1] = rt.y; c.right[2] = rt.z;

@@ -136,7 +136,9 @@ dist = cam_distance if cam_distance > 0 else fit_distance(half, d, fit, fov, wid
 mm_per_world = s * radius
 eye = d * dist * mm_per_world
 fwd = (-eye).normalized()
-right = fwd.cross(mathutils.Vector((0, 1, 0))).normalized()
+# jd_m4_look_at's up: +Y, or +X where the view is within 2.6 degrees of it
+world_up = mathutils.Vector((1, 0, 0)) if abs(fwd.y) > 0.999 else mathutils.Vector((0, 1, 0))
+right = fwd.cross(world_up).normalized()
 up = right.cross(fwd)
 cam_data = bpy.data.cameras.new("jade")
 cam_data.sensor_fit = "VERTICAL"
