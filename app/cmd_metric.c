@@ -92,9 +92,9 @@ static int metric(const char *paths[2], const char *mask_path)
     jd_json_string(stdout, paths[1]);
     printf(", \"pixels\": %ld, \"rmse\": %.6f, \"psnr_db\": %.3f, \"ssim\": %.5f, "
            "\"best_scale\": %.5f, \"rmse_scaled\": %.6f, \"psnr_scaled_db\": %.3f, \"ssim_scaled\": %.5f, "
-           "\"reference_peak\": %.5f}\n",
+           "\"reference_peak\": %.5f, \"highpass_rmse\": %.6f, \"highpass_pixels\": %ld}\n",
            r.pixels, r.rmse, isfinite(r.psnr) ? r.psnr : 999.0, r.ssim, r.scale, r.rmse_scaled,
-           isfinite(r.psnr_scaled) ? r.psnr_scaled : 999.0, r.ssim_scaled, r.peak);
+           isfinite(r.psnr_scaled) ? r.psnr_scaled : 999.0, r.ssim_scaled, r.peak, r.highpass, r.highpass_pixels);
     rc = fflush(stdout) == 0 && !ferror(stdout) ? 0 : 1;
 done:
     for (int k = 0; k < 2; k++) free(img[k]);
@@ -111,7 +111,9 @@ int jd_cmd_metric(int argc, char **argv)
         &o, JD_OPT_METRIC, "metric",
         "Compares picture A with the reference B in linear light (PNGs in jade's display encoding, or\n"
         "linear PFMs): RMSE, PSNR and SSIM over the object's pixels, and the same after the single\n"
-        "best global scale of A. The object is M's nonzero pixels, or where either picture differs\n"
+        "best global scale of A; and highpass_rmse, for blotches and steps: the RMS of the difference's\n"
+        "luminance less its mean over the 9x9 pixels around, where they all lie on the object. The\n"
+        "object is M's nonzero pixels, or where either picture differs\n"
         "from its top-left (background) pixel; no such pixel is an error. Prints JSON. jade's PNGs clip\n"
         "at linear 1.18 (its tone curve reaches white there): compare PFMs where brighter values matter.",
         argc, argv);
