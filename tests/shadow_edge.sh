@@ -1,0 +1,41 @@
+#!/bin/sh
+# The edge of a cast shadow in full against the reference's: a thin wall on
+# a floor (tests/wall.awk), seen from above, its shadow's far edge measured
+# column by column (tests/edge_measure.c): the width from 20% to 80% of the
+# way from the shadow to the lit floor (the light diffuses into the shadow:
+# as far in full as in the reference) and how far the edge strays from a
+# straight line (a shadow in stair steps a light-map texel wide strays by
+# the steps). The floor is 100 mm across the picture's 147 columns of it.
+jade=$1 measure=$2
+. "$(dirname "$0")/harness.sh"
+awk -f "$(dirname "$0")/wall.awk" > "$tmp/wall.obj"
+mm=$(awk 'BEGIN { printf "%.4f", 100 / 147 }')
+field() { sed -n "s/.*\"$2\": \([0-9.]*\).*/\1/p" "$tmp/$1.json"; }
+for az in -60 -75; do
+    scene="--mesh $tmp/wall.obj --mm-per-unit 1 --pitch 89 --yaw 0 --light-azimuth $az --light-elevation 45 --size 256x256"
+    # shellcheck disable=SC2086
+    "$jade" reference $scene --quiet --out "$tmp/ref$az.png" >/dev/null || { bad "jade reference did not run"; continue; }
+    for m in none full mali; do
+        if [ $m = mali ]; then opt="--profile mali400"; else opt="--mode $m"; fi
+        # shellcheck disable=SC2086
+        "$jade" render $scene $opt --out "$tmp/$m$az.png" >/dev/null 2>&1 || bad "jade render $opt did not run"
+    done
+    for p in ref none full mali; do
+        "$measure" "$tmp/$p$az.png" 80 170 60 118 "$mm" > "$tmp/$p$az.json" || bad "no edge measured in $p (light azimuth $az)"
+    done
+    rw=$(field ref$az width_mm) rs=$(field ref$az stray_mm) nw=$(field none$az width_mm)
+    echo "light azimuth $az: width / stray in mm: reference $rw / $rs, none $nw / $(field none$az stray_mm)," \
+         "full $(field full$az width_mm) / $(field full$az stray_mm), full on mali400 $(field mali$az width_mm) / $(field mali$az stray_mm)"
+    if awk -v n="$nw" -v r="$rw" 'BEGIN { exit !(n < 0.75 * r) }'; then ok "none's edge is sharper than the reference's ($nw < $rw mm)"
+    else bad "none's edge $nw mm is not sharper than the reference's $rw mm: the measure sees no diffusion"; fi
+    for p in full mali; do
+        w=$(field $p$az width_mm) s=$(field $p$az stray_mm)
+        # As soft as the reference within a third either way; no steps: strays
+        # no more than the reference's own line does, plus a tenth of a pixel.
+        if awk -v w="$w" -v r="$rw" 'BEGIN { exit !(w >= 0.67 * r && w <= 1.5 * r) }'; then ok "$p: edge $w mm wide, the reference's $rw"
+        else bad "$p: edge $w mm wide, the reference's $rw (allowed 0.67-1.5 times)"; fi
+        if awk -v s="$s" -v r="$rs" -v mm="$mm" 'BEGIN { exit !(s <= r + 0.1 * mm) }'; then ok "$p: the edge strays $s mm, the reference's $rs"
+        else bad "$p: the edge strays $s mm from a straight line, the reference's $rs (steps?)"; fi
+    done
+done
+finish shadow_edge
