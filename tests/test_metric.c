@@ -41,6 +41,19 @@ int main(void)
     for (int i = 0; i < W * H * 3; i++) a[i] = ((i / 3) % W) < W / 2 ? b[i] : 0.0f;
     jd_metric_compute(a, b, mask, W, H, &m);
     CHECK(m.pixels == W * H / 2 && m.rmse == 0, "the mask confines the comparison (%ld px)", m.pixels);
+    /* The high-pass measure: a smooth difference (a ramp, a gain) is not a
+     * blotch; a 4-pixel blotch is, whatever the mask's edge does. */
+    for (int i = 0; i < W * H * 3; i++) a[i] = b[i] + 0.002f * (float)((i / 3) % W);
+    jd_metric_compute(a, b, NULL, W, H, &m);
+    CHECK(m.highpass < 1e-6 && m.rmse > 0.01 && m.highpass_pixels == (W - 8) * (H - 8),
+          "a ramp of difference is no blotch (highpass %.2g over %ld px)", m.highpass, m.highpass_pixels);
+    memcpy(a, b, sizeof a);
+    for (int y = 20; y < 24; y++)
+        for (int x = 10; x < 14; x++)
+            for (int c = 0; c < 3; c++) a[3 * (y * W + x) + c] += 0.1f;
+    jd_metric_compute(a, b, mask, W, H, &m);
+    CHECK(m.highpass > 0.01 && m.highpass_pixels == (W / 2 - 8) * (H - 8), "a blotch is (highpass %.4f over %ld px)",
+          m.highpass, m.highpass_pixels);
     /* jade writes sqrt(min(1, c / (1 + 0.15 c))); the metric undoes it up
      * to where it clips (c = 1/0.85). */
     double worst = 0;
