@@ -1,0 +1,38 @@
+#!/bin/sh
+# Flicker: the default asset, still, while the light orbits it by a degree a
+# frame for 60 frames (azimuth 140 to 199, back-lit, no highlight, whose
+# own motion is not the question), in full, none and the reference.
+# tests/flicker_measure.c gives each sequence's `jerk`, the RMS of the
+# second difference between frames: the light's motion changes shading
+# smoothly and leaves little of it; a pixel that pops leaves it whole.
+# The reference's jerk is what smooth looks like. The bound holds full's
+# figure today (docs/quality.md: it flickers more than the reference) with
+# a tenth to spare, so that it cannot grow unseen.
+jade=$1 measure=$2
+. "$(dirname "$0")/harness.sh"
+scene="--size 128x128 --specular 0 --light-elevation 35"
+i=0
+while [ $i -lt 60 ]; do
+    az=$((140 + i))
+    # shellcheck disable=SC2086
+    "$jade" reference $scene --light-azimuth $az --quiet --out "$tmp/ref$i.png" --mask "$tmp/mask.png" >/dev/null ||
+        { bad "jade reference did not run (azimuth $az)"; break; }
+    for m in none full; do
+        # shellcheck disable=SC2086
+        "$jade" render $scene --mode $m --light-azimuth $az --out "$tmp/$m$i.png" >/dev/null 2>&1 ||
+            { bad "jade render --mode $m did not run (azimuth $az)"; break; }
+    done
+    i=$((i + 1))
+done
+jerk() {
+    # shellcheck disable=SC2046
+    "$measure" "$tmp/mask.png" $(i=0; while [ $i -lt 60 ]; do echo "$tmp/$1$i.png"; i=$((i + 1)); done) |
+        sed -n 's/.*"jerk": \([0-9.]*\).*/\1/p'
+}
+ref=$(jerk ref) none=$(jerk none) full=$(jerk full)
+echo "jerk (RMS of the second difference between frames, linear luminance): reference $ref, none $none, full $full"
+if awk -v r="$ref" -v n="$none" 'BEGIN { exit !(r != "" && r < n) }'; then ok "the reference is smoother than none ($ref < $none)"
+else bad "the reference ($ref) is not smoother than none ($none): the measure sees nothing"; fi
+if awk -v f="$full" 'BEGIN { exit !(f != "" && f <= 0.0151) }'; then ok "full's jerk $full <= 0.0151 (measured 0.0137)"
+else bad "full's jerk $full, over 0.0151 (measured 0.0137; the reference $ref)"; fi
+finish flicker
