@@ -1,35 +1,58 @@
 #!/bin/sh
-# jade held to ground truth it did not write: the default scene (jade's own
-# asset, marble, back-lit) path-traced by Blender's Cycles, committed as
-# assets/cycles/default-marble-back.png (4096 samples, 1024 bounces: its
-# noise is under 0.01 RMSE, docs/quality.md), made by
+# jade held to ground truth it did not write: jade's own asset (the knot,
+# tools/gen_asset.c) path-traced by Blender's Cycles in the quality table's
+# eight cases (marble, skin1, ketchup, whole milk; front-lit: light azimuth
+# -30, elevation 40; back-lit: the default 170, 35), committed as
+# assets/cycles/default-MATERIAL-front.png and -back.png (128x128, 4096
+# samples, 1024 bounces: their noise is about 0.01 RMSE, docs/quality.md),
+# each made by
 #   tools/gen_asset.c > knot.obj (the asset before Draco's quantization)
-#   tools/cycles-reference.sh --mesh knot.obj --size 128x128 --material marble \
-#       --eta 1 --ambient 0 --samples 4096 --seed 11 --out default-marble-back
+#   tools/cycles-reference.sh --mesh knot.obj --size 128x128 --material MATERIAL \
+#       --eta 1 --ambient 0 [--light-azimuth -30 --light-elevation 40] \
+#       --samples 4096 --seed 11 --out default-MATERIAL-LIGHT
 # The boundary is index-matched (Cycles converges on nothing else under a
 # directional light), so jade runs with --eta 1 --ambient 0 --specular 0.
 # The bounds hold today's figures (RMSE in linear light over jade's mask)
 # with a tenth to spare: a change that takes jade's reference or full
 # further from the path tracer fails here, with the figure printed.
+# Back-lit, both are closer than none; front-lit on this knot they are not
+# (docs/quality.md: jade's reference is darker than the medium), which the
+# test prints and does not hide.
 jade=$1 src=$2
 . "$(dirname "$0")/harness.sh"
-truth=$src/assets/cycles/default-marble-back.png
-mesh=$src/assets/default.drc
-scene="--mesh $mesh --size 128x128 --material marble --eta 1 --ambient 0 --specular 0"
-rmse() { "$jade" metric "$1" "$truth" --mask "$tmp/mask.png" | sed -n 's/.*"rmse": \([0-9.e-]*\).*/\1/p'; }
-# shellcheck disable=SC2086
-"$jade" reference $scene --pixel-samples 3 --quiet --out "$tmp/reference.png" --mask "$tmp/mask.png" >/dev/null ||
-    { bad "jade reference did not run"; finish cycles_truth; exit; }
-for m in none full; do
-    # shellcheck disable=SC2086
-    "$jade" render $scene --mode $m --out "$tmp/$m.png" >/dev/null 2>&1 || bad "jade render --mode $m did not run"
-done
-ref=$(rmse "$tmp/reference.png") none=$(rmse "$tmp/none.png") full=$(rmse "$tmp/full.png")
-echo "RMSE against Cycles: jade reference $ref, none $none, full $full"
+rmse() { "$jade" metric "$1" "$2" --mask "$tmp/mask.png" | sed -n 's/.*"rmse": \([0-9.e-]*\).*/\1/p'; }
+gain() { "$jade" metric "$1" "$2" --mask "$tmp/mask.png" | sed -n 's/.*"best_scale": \([0-9.e-]*\).*/\1/p'; }
 # within WHAT VALUE BOUND
 within() { if awk -v v="$2" -v b="$3" 'BEGIN { exit !(v != "" && v <= b) }'; then ok "$1 $2 <= $3"; else bad "$1 $2, over $3"; fi; }
-within "jade reference (measured 0.0721)" "$ref" 0.079
-within "full (measured 0.0839)" "$full" 0.092
-if awk -v r="$ref" -v n="$none" 'BEGIN { exit !(r < n) }'; then ok "jade reference closer than none ($ref < $none)"; else bad "jade reference $ref not closer than none $none"; fi
-if awk -v f="$full" -v n="$none" 'BEGIN { exit !(f < n) }'; then ok "full closer than none ($full < $none)"; else bad "full $full not closer than none $none"; fi
+closer() { if awk -v a="$2" -v b="$3" 'BEGIN { exit !(a != "" && a < b) }'; then ok "$1 ($2 < $3)"; else bad "$1: $2, not below $3"; fi; }
+# material light azimuth elevation, then today's RMSE of the reference and full
+while read -r mat light az el ref_today full_today; do
+    truth=$src/assets/cycles/default-$mat-$light.png
+    scene="--mesh $src/assets/default.drc --size 128x128 --material $mat --eta 1 --ambient 0 --specular 0"
+    scene="$scene --light-azimuth $az --light-elevation $el"
+    # shellcheck disable=SC2086
+    "$jade" reference $scene --pixel-samples 3 --quiet --out "$tmp/reference.png" --mask "$tmp/mask.png" >/dev/null ||
+        { bad "jade reference did not run ($mat, $light)"; continue; }
+    for m in none full; do
+        # shellcheck disable=SC2086
+        "$jade" render $scene --mode $m --out "$tmp/$m.png" >/dev/null 2>&1 || bad "jade render --mode $m did not run"
+    done
+    ref=$(rmse "$tmp/reference.png" "$truth") none=$(rmse "$tmp/none.png" "$truth") full=$(rmse "$tmp/full.png" "$truth")
+    echo "$mat, $light-lit: RMSE against Cycles: jade reference $ref (best gain $(gain "$tmp/reference.png" "$truth")), none $none, full $full"
+    within "$mat $light: jade reference (measured $ref_today)" "$ref" "$(awk -v v="$ref_today" 'BEGIN { printf "%.4f", 1.1 * v }')"
+    within "$mat $light: full (measured $full_today)" "$full" "$(awk -v v="$full_today" 'BEGIN { printf "%.4f", 1.1 * v }')"
+    if [ "$light" = back ]; then
+        closer "$mat back: jade reference closer than none" "$ref" "$none"
+        closer "$mat back: full closer than none" "$full" "$none"
+    fi
+done <<'CASES'
+marble front -30 40 0.0673 0.0704
+marble back 170 35 0.0721 0.0839
+skin1 front -30 40 0.0529 0.0587
+skin1 back 170 35 0.0711 0.0731
+ketchup front -30 40 0.0324 0.0391
+ketchup back 170 35 0.0443 0.0470
+wholemilk front -30 40 0.0672 0.0719
+wholemilk back 170 35 0.0689 0.0822
+CASES
 finish cycles_truth
