@@ -1,5 +1,6 @@
 #!/bin/sh
 # cycles-reference.sh [jade reference options] --out PREFIX [--samples N] [--bounces N] [--seed N]
+#                     [--boundary matched|walk]
 #
 # The scene of a `jade reference` command line path-traced by Blender's Cycles
 # (Debian's `blender`, headless, on the CPU): ground truth that jade did not
@@ -7,10 +8,16 @@
 # dependency of jade (tools/cycles_scene.py has the scene and its reasons).
 #
 # The object is a homogeneous medium with the material's sigma_s' and
-# sigma_a (isotropic scattering), its boundary index-matched: jade's options
-# must say --eta 1 --ambient 0 (no light but the directional one) and the
-# picture is compared with jade's at the same options; --specular is moot (an
-# index-matched boundary reflects nothing). Meshes: OBJ, PLY or STL.
+# sigma_a (isotropic scattering). --boundary matched (the default): no
+# surface, index-matched; --boundary walk: Cycles' random-walk subsurface
+# scattering given the colour and radius that its own mapping turns back into
+# those sigma values, behind a diffuse boundary (cosine entry and exit, no
+# Fresnel). Neither reflects or refracts as a smooth dielectric would (which a
+# path tracer cannot sample under a directional light: docs/quality.md), so
+# jade's options must say --eta 1 --ambient 0 (no light but the directional
+# one) and the picture is compared with jade's at the same options;
+# --specular is moot (neither boundary has a highlight). Meshes: OBJ, PLY or
+# STL.
 # Writes PREFIX.png (jade's tone curve), PREFIX.pfm (linear) and
 # PREFIX.mask.png, and prints the Blender command it ran.
 #
@@ -49,6 +56,7 @@ while [ $# -gt 0 ]; do
         --samples) keys="$keys samples=$2" ;;
         --bounces) keys="$keys bounces=$2" ;;
         --seed) keys="$keys seed=$2" ;;
+        --boundary) keys="$keys boundary=$2" ;;
         --out) out=$2 ;;
         *) die "$1: not an option this tool passes to Cycles" ;;
     esac
@@ -57,7 +65,7 @@ done
 [ -n "$out" ] || die "--out PREFIX is required"
 case " $keys" in *" mesh="*) ;; *) die "--mesh FILE (OBJ, PLY or STL) is required" ;; esac
 case " $keys" in *" size="*) ;; *) keys="$keys size=512x512" ;; esac
-[ "$eta" = 1 ] || [ "$eta" = 1.0 ] || die "only an index-matched boundary converges here: pass --eta 1 (and to jade)"
+[ "$eta" = 1 ] || [ "$eta" = 1.0 ] || die "neither boundary refracts or reflects: pass --eta 1 (and to jade)"
 [ "$ambient" = 0 ] || [ "$ambient" = 0.0 ] || die "the light is the directional one only: pass --ambient 0 (and to jade)"
 # The named material's coefficients, as jade has them; explicit ones win.
 row=$("$jade" info --materials | awk -v m="$material" '$1 == m { print $2 "," $3 "," $4 " " $5 "," $6 "," $7 }')

@@ -7,11 +7,18 @@
 # The object is what jade's model describes, physically: a homogeneous medium
 # with jade's sigma_s' (as sigma_s, isotropic phase: g = 0) and sigma_a per
 # channel, in millimetres (one Blender unit = 1 mm), lit by a directional
-# light. Boundary "matched": no surface at all, the medium's index equals the
-# air's (eta 1): light enters and leaves unrefracted, so Cycles' next-event
-# estimation reaches the sun from inside the medium and converges. A smooth
-# dielectric boundary (eta > 1) under a delta light is a caustic path a path
-# tracer cannot sample; it is not offered here (see docs/quality.md).
+# light. Two boundaries (boundary=):
+# - "matched" (the default): no surface at all, the medium's index equals the
+#   air's (eta 1): light enters and leaves unrefracted, so Cycles' next-event
+#   estimation reaches the sun from inside the medium and converges.
+# - "walk": Cycles' random-walk subsurface scattering (Chiang et al. 2016) with
+#   the colour and radius that Cycles' own mapping turns back into jade's
+#   sigma values (see walk_inputs): the same medium behind a diffuse boundary,
+#   light entering and leaving with a cosine distribution (Cycles 3.4 samples
+#   the entry that way), no Fresnel reflection and no total internal
+#   reflection.
+# A smooth dielectric boundary (eta > 1) under a delta light is a caustic path
+# a path tracer cannot sample; it is not offered here (see docs/quality.md).
 #
 # Camera, light and units follow jade exactly: the mesh is centred on its
 # bounding box and scaled by mm-per-unit (default: the box's diagonal 100 mm),
@@ -50,6 +57,9 @@ light_intensity = float(args.get("light_intensity", "1"))
 exposure = float(args.get("exposure", "1"))
 samples, bounces = int(args.get("samples", "256")), int(args.get("bounces", "1024"))
 seed = int(args.get("seed", "0"))
+boundary = args.get("boundary", "matched")
+if boundary not in ("matched", "walk"):
+    sys.exit("cycles_scene: boundary=%s: matched or walk" % boundary)
 out = args["out"]
 background = [0.05, 0.055, 0.065]  # jd_scene_defaults: after the shoulder, before the sqrt
 
@@ -167,14 +177,90 @@ world.use_nodes = True
 world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
 bpy.context.scene.world = world
 
-# The medium: Volume Scatter (colour x density = sigma_s per channel) plus
-# Volume Absorption (density x (1 - colour) = sigma_a), no surface shader.
+WALK_IOR = 1.01  # the least Cycles takes; the radius below undoes what it does
+
+
+def walk_alpha(albedo):
+    """Cycles 3.4's subsurface_random_walk_remap at anisotropy 0: the surface
+    colour to the single-scattering albedo (Chiang et al. 2016's fit)."""
+    a0, b, c = 1.8260523782, 4.98511194385 + 0.127355959438, 1.09686102424
+    d, e, f = 0.496310210422, 4.23190299701 + 0.00310603949088, 2.40602999408
+    blend = albedo ** 0.25
+    alpha = (1 - blend) * a0 * math.atan(b * albedo) ** c + blend * d * math.atan(e * albedo) ** f
+    return min(max(alpha, 0.0), 0.999999)
+
+
+def walk_radius_factor(albedo, eta):
+    """Cycles 3.4's bssrdf_setup_radius for the random walk: the radius it is
+    given is multiplied by sqrt(3 (1 - alpha')), alpha' from inverting the
+    dipole's total reflectance by its own 12-step bisection."""
+    inv = 1.0 / eta
+    f_dr = inv * (-1.440 * inv + 0.710) + 0.668 + 0.0636 * eta
+    fta = (4.0 / 3.0) * (1 + f_dr) / (1 - f_dr)
+
+    def rd(ap):
+        t = math.sqrt(3 * (1 - ap))
+        return 0.5 * ap * (1 + math.exp(-fta * t)) * math.exp(-t)
+
+    if albedo < 1e-4:
+        ap = 0.0
+    elif albedo >= 0.995:
+        ap = 0.999999
+    else:
+        lo, hi = 0.0, 1.0
+        for _ in range(12):
+            mid = 0.5 * (lo + hi)
+            if rd(mid) < albedo:
+                lo = mid
+            else:
+                hi = mid
+        ap = mid
+    return math.sqrt(3 * (1 - ap))
+
+
+def walk_inputs(ss, sa):
+    """The node's colour and radius (mm) for one channel whose medium is jade's
+    sigma_s' (isotropic) and sigma_a: Cycles takes sigma_t = 1 / (radius x
+    factor) and the albedo from walk_alpha(colour); both are inverted here.
+    Below a single-scattering albedo of 0.2 Cycles raises it to 0.2 and lowers
+    the path's weight instead (ketchup's green and blue): not the same medium
+    there, and said so."""
+    st = ss + sa
+    alpha = ss / st
+    lo, hi = 0.0, 1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if walk_alpha(mid) < alpha:
+            lo = mid
+        else:
+            hi = mid
+    colour = 0.5 * (lo + hi)
+    return colour, (1.0 / st) / walk_radius_factor(colour, WALK_IOR), alpha
+
+
 mat = bpy.data.materials.new("medium")
 mat.use_nodes = True
 nt = mat.node_tree
 for n in list(nt.nodes):
     nt.nodes.remove(n)
 outn = nt.nodes.new("ShaderNodeOutputMaterial")
+if boundary == "walk":
+    ch = [walk_inputs(sigma_s[k], sigma_a[k]) for k in range(3)]
+    for k, (_, _, alpha) in enumerate(ch):
+        if alpha < 0.2:
+            print("cycles_scene: channel %d: single-scattering albedo %.3f, below the 0.2 Cycles' random walk "
+                  "keeps; that channel is not jade's medium" % (k, alpha))
+    ss_node = nt.nodes.new("ShaderNodeSubsurfaceScattering")
+    ss_node.falloff = "RANDOM_WALK"
+    ss_node.inputs["Color"].default_value = (ch[0][0], ch[1][0], ch[2][0], 1)
+    ss_node.inputs["Scale"].default_value = 1.0
+    ss_node.inputs["Radius"].default_value = (ch[0][1], ch[1][1], ch[2][1])
+    ss_node.inputs["IOR"].default_value = WALK_IOR
+    ss_node.inputs["Anisotropy"].default_value = 0.0
+    nt.links.new(ss_node.outputs[0], outn.inputs["Surface"])
+    print("cycles_scene: random walk: colour %s radius %s mm" % ([round(c[0], 6) for c in ch], [round(c[1], 6) for c in ch]))
+# The medium: Volume Scatter (colour x density = sigma_s per channel) plus
+# Volume Absorption (density x (1 - colour) = sigma_a), no surface shader.
 sc = nt.nodes.new("ShaderNodeVolumeScatter")
 ab = nt.nodes.new("ShaderNodeVolumeAbsorption")
 add = nt.nodes.new("ShaderNodeAddShader")
@@ -187,7 +273,8 @@ ab.inputs["Color"].default_value = (1 - sigma_a[0] / da, 1 - sigma_a[1] / da, 1 
 ab.inputs["Density"].default_value = da
 nt.links.new(sc.outputs[0], add.inputs[0])
 nt.links.new(ab.outputs[0], add.inputs[1])
-nt.links.new(add.outputs[0], outn.inputs["Volume"])
+if boundary == "matched":
+    nt.links.new(add.outputs[0], outn.inputs["Volume"])
 mat.cycles.homogeneous_volume = True
 obj.data.materials.clear()
 obj.data.materials.append(mat)
@@ -201,7 +288,9 @@ sc_.cycles.use_denoising = False
 sc_.cycles.seed = seed
 sc_.cycles.max_bounces = bounces
 sc_.cycles.volume_bounces = bounces
-sc_.cycles.diffuse_bounces = 0
+# The walk's exit is a diffuse surface: light it sends on re-enters elsewhere
+# (the matched medium's paths do that as volume bounces).
+sc_.cycles.diffuse_bounces = bounces if boundary == "walk" else 0
 sc_.cycles.glossy_bounces = 0
 sc_.cycles.transmission_bounces = 0
 sc_.cycles.transparent_max_bounces = 64
