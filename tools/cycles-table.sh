@@ -10,15 +10,18 @@
 # Cycles converges on: index-matched (--eta 1), no ambient light, no
 # highlight (--ambient 0 --specular 0), for jade as for Cycles. Long (Cycles:
 # about 90 s a case at 128x128 and 1024 samples on 2 cores): on demand, never
-# by the tests. KEEP=1 reuses Cycles pictures already in OUT_DIR.
+# by the tests. KEEP=1 reuses Cycles pictures already in OUT_DIR; BOUNDARY=walk
+# renders Cycles' random-walk subsurface scattering instead of the matched
+# medium (tools/cycles-reference.sh --boundary).
 #
-#   SIZE=128x128 SAMPLES=1024 tools/cycles-table.sh [OUT_DIR]   (default build/cycles)
+#   SIZE=128x128 SAMPLES=1024 [BOUNDARY=walk] tools/cycles-table.sh [OUT_DIR]   (default build/cycles)
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${BUILD:-$root/build}
 out=${1:-$build/cycles}
 size=${SIZE:-128x128}
 samples=${SAMPLES:-1024}
+boundary=${BOUNDARY:-matched}
 jade=$build/jade
 bunny=$root/../shared/testdata/meshes/stanford-bunny.obj
 [ -x "$jade" ] || { echo "cycles-table: $jade is not built" >&2; exit 1; }
@@ -35,7 +38,7 @@ for mat in ${MATERIALS:-marble skin1 ketchup wholemilk}; do
         scene="--mesh $bunny --size $size --material $mat --light-azimuth $az --light-elevation $el"
         if [ "${KEEP:-0}" != 1 ] || [ ! -f "$base.pfm" ]; then
             # shellcheck disable=SC2086
-            "$root/tools/cycles-reference.sh" $scene --eta 1 --ambient 0 --samples "$samples" --seed 7 --out "$base" >&2
+            "$root/tools/cycles-reference.sh" $scene --eta 1 --ambient 0 --samples "$samples" --seed 7 --boundary "$boundary" --out "$base" >&2
         fi
         # shellcheck disable=SC2086
         "$jade" reference $scene $common --pixel-samples 3 --out "$base.jade_reference.png" --mask "$base.jade_mask.png" --quiet >/dev/null 2>&1
