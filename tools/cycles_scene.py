@@ -180,6 +180,19 @@ bpy.context.scene.world = world
 WALK_IOR = 1.01  # the least Cycles takes; the radius below undoes what it does
 
 
+def bisect(f, target, steps):
+    """x in [0, 1] where the increasing f reaches target: the last midpoint of
+    `steps` halvings, as Cycles' own solver returns it."""
+    lo, hi = 0.0, 1.0
+    for _ in range(steps):
+        mid = 0.5 * (lo + hi)
+        if f(mid) < target:
+            lo = mid
+        else:
+            hi = mid
+    return mid
+
+
 def walk_alpha(albedo):
     """Cycles 3.4's subsurface_random_walk_remap at anisotropy 0: the surface
     colour to the single-scattering albedo (Chiang et al. 2016's fit)."""
@@ -207,14 +220,7 @@ def walk_radius_factor(albedo, eta):
     elif albedo >= 0.995:
         ap = 0.999999
     else:
-        lo, hi = 0.0, 1.0
-        for _ in range(12):
-            mid = 0.5 * (lo + hi)
-            if rd(mid) < albedo:
-                lo = mid
-            else:
-                hi = mid
-        ap = mid
+        ap = bisect(rd, albedo, 12)
     return math.sqrt(3 * (1 - ap))
 
 
@@ -227,14 +233,7 @@ def walk_inputs(ss, sa):
     there, and said so."""
     st = ss + sa
     alpha = ss / st
-    lo, hi = 0.0, 1.0
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        if walk_alpha(mid) < alpha:
-            lo = mid
-        else:
-            hi = mid
-    colour = 0.5 * (lo + hi)
+    colour = bisect(walk_alpha, alpha, 60)
     return colour, (1.0 / st) / walk_radius_factor(colour, WALK_IOR), alpha
 
 
