@@ -27,7 +27,7 @@ int jd_cmd_reference(int argc, char **argv)
 
     jd_ref_desc d = {.mesh = &s.mesh, .scene = o.scene, .width = o.width, .height = o.height,
                      .samples = (uint32_t)o.samples, .error = o.ref_error, .window_mm = o.window_mm,
-                     .pixel_samples = o.pixel_samples,
+                     .pixel_samples = o.pixel_samples, .exact_albedo = o.exact_albedo,
                      .threads = o.threads, .progress = !o.quiet, .seed = (uint32_t)o.seed};
     size_t n = (size_t)o.width * o.height;
     float *linear = malloc(n * 3 * sizeof(float));
@@ -40,7 +40,13 @@ int jd_cmd_reference(int argc, char **argv)
         fprintf(stderr, "jade reference: out of memory for a %dx%d picture\n", o.width, o.height);
         goto done;
     }
-    if (jd_ref_create(&d, &ref, &st, &err) || jd_ref_render(ref, linear, mask, &st, &err)) {
+    jd_result res = jd_ref_create(&d, &ref, &st, &err);
+    if (res == JD_ERR_ARG && o.exact_albedo) { /* the option, not the mesh */
+        fprintf(stderr, "jade reference: --exact-albedo: %s\n", err.msg);
+        rc = 2;
+        goto done;
+    }
+    if (res || jd_ref_render(ref, linear, mask, &st, &err)) {
         fprintf(stderr, "jade reference: %s: %s\n", s.mesh_path, err.msg);
         goto done;
     }

@@ -11,6 +11,7 @@
 
 #include "clock.h"
 #include "display_curve.h"
+#include "halfspace_albedo.h"
 #include "progress.h"
 #include "ref_bvh.h"
 #include "ref_diffusion.h"
@@ -31,6 +32,7 @@ struct jd_ref {
     float *pt_alb;
     jd_diffusion diff;
     jd_dipole dp;
+    float albedo_scale[3]; /* --exact-albedo: the half-space's albedo over the dipole's, per channel; else 1 */
     jd_scene_view view;
     float mm_per_world, eps;
     float light[3];
@@ -281,6 +283,20 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     r->f0 = r->view.f0;
     r->fresnel_norm = (1.0f - r->f0) * 20.0f / 21.0f;
     jd_dipole_init(&r->dp, s->sigma_s, s->sigma_a, r->view.eta, s->density > 0 ? s->density : 1.0f);
+    for (int c = 0; c < 3; c++) r->albedo_scale[c] = 1.0f;
+    if (desc->exact_albedo) {
+        /* The transport equation's albedo is known in closed form only where
+         * the boundary neither reflects nor refracts. */
+        double eta = r->view.eta;
+        if (fabs(eta - 1.0) > 1e-6) {
+            jd_ref_destroy(r);
+            return jd_fail(err, JD_ERR_ARG, "the exact albedo is known for an index-matched boundary only (eta 1, not %g)",
+                           eta);
+        }
+        for (int c = 0; c < 3; c++)
+            if (r->dp.rd_total[c] > 0)
+                r->albedo_scale[c] = (float)(jd_halfspace_albedo(r->dp.alpha[c]) / r->dp.rd_total[c]);
+    }
     r->st.mm_per_world = r->mm_per_world;
     r->st.threads = desc->threads > 0 ? desc->threads : core_count();
 
@@ -404,6 +420,7 @@ static int pixel_ray(px_ctx *c, float fx, float fy, float o[3], uint64_t *evals)
     irradiance(r, p, n, ng, ev);
     for (int k = 0; k < 3; k++) xm[k] = p[k] * r->mm_per_world;
     *evals += jd_diffusion_exitance(&r->diff, xm, ev, mo);
+    for (int k = 0; k < 3; k++) mo[k] *= r->albedo_scale[k];
     if (r->d.mesh->colors) {
         float fo[3];
         albedo_factor(r, hit.tri, hit.u, hit.v, fo);

@@ -46,6 +46,9 @@ expect "the default ambient" 0 "wrote" -- "$jade" render --size 32x32 --out "$tm
 if cmp -s "$tmp/amb0.png" "$tmp/amb1.png"; then fail=$((fail + 1)); echo "FAIL --ambient 0 --specular 0 left the picture as it was"; else pass=$((pass + 1)); fi
 expect "reference without ambient" 0 "wrote" -- "$jade" reference --size 24x24 --samples 20000 --quiet --out "$tmp/ramb0.png" --ambient 0 --specular 0
 expect "reference with ambient" 0 "wrote" -- "$jade" reference --size 24x24 --samples 20000 --quiet --out "$tmp/ramb1.png"
+# The half-space's exact albedo is known for an index-matched boundary only.
+expect "reference --exact-albedo at eta 1" 0 "wrote" -- "$jade" reference --size 24x24 --samples 20000 --quiet --out "$tmp/rex.png" --eta 1 --exact-albedo
+expect "reference --exact-albedo at marble's eta" 2 "index-matched boundary only (eta 1, not 1.5)" -- "$jade" reference --size 24x24 --samples 20000 --quiet --out "$tmp/rex2.png" --exact-albedo
 if cmp -s "$tmp/ramb0.png" "$tmp/ramb1.png"; then fail=$((fail + 1)); echo "FAIL jade reference --ambient 0 left the picture as it was"; else pass=$((pass + 1)); fi
 expect "negative ambient" 2 "--ambient: expected a number from 0 to 100" -- "$jade" render --ambient -1
 expect "a triple with four" 2 "three numbers" -- "$jade" render --sigma-s 1,2,3,4

@@ -7,7 +7,9 @@
  *      the profile Rd(r) (the beam convolved with Rd, integrated finely);
  *   3. doubling the samples, and tightening the octree's error bound, change
  *      the picture by less than the stated tolerances;
- *   4. every pixel finite and non-negative.
+ *   4. every pixel finite and non-negative;
+ *   5. the half-space's exact albedo (--exact-albedo) against a Monte Carlo
+ *      walk of the same medium written here, and the dipole's below it.
  * Usage: test_reference ASSET.drc (the project's default asset). */
 #include <math.h>
 #include <stdio.h>
@@ -15,6 +17,8 @@
 #include <string.h>
 
 #include "check.h"
+#include "halfspace_albedo.h"
+#include "material.h"
 #include "mesh_load.h"
 #include "ref_render.h"
 
@@ -294,8 +298,56 @@ static void test_convergence(const jd_mesh *m)
     }
 }
 
+/* A plane-parallel walk: diffuse light into an index-matched half-space
+ * (unit mean free path, isotropic scattering, albedo alpha); the fraction
+ * that comes back out. Weights fall by alpha at each scattering and paths
+ * under 1e-4 end by Russian roulette. A small generator of its own so the
+ * figure does not depend on the C library's rand(). */
+static uint64_t mc_state = 0x9E3779B97F4A7C15ull;
+static double mc_uniform(void)
+{
+    mc_state ^= mc_state << 13;
+    mc_state ^= mc_state >> 7;
+    mc_state ^= mc_state << 17;
+    return ((mc_state >> 11) + 0.5) * (1.0 / 9007199254740992.0);
+}
+
+static double walk_albedo(double alpha, int photons)
+{
+    double out = 0;
+    for (int i = 0; i < photons; i++) {
+        double z = 0, mu = sqrt(mc_uniform()), w = 1; /* cosine-weighted, inward */
+        for (;;) {
+            z += -log(mc_uniform()) * mu;
+            if (z < 0) { out += w; break; }
+            w *= alpha;
+            if (w < 1e-4) {
+                if (mc_uniform() > 0.1) break;
+                w *= 10;
+            }
+            mu = 2 * mc_uniform() - 1;
+        }
+    }
+    return out / photons;
+}
+
+static void test_albedo(void)
+{
+    const double alphas[] = {0.3, 0.68, 0.9, 0.99};
+    for (int k = 0; k < 4; k++) {
+        double exact = jd_halfspace_albedo(alphas[k]), mc = walk_albedo(alphas[k], 400000);
+        double A = (1 + jd_dipole_fdr(1.0)) / (1 - jd_dipole_fdr(1.0)), dip = jd_dipole_rd_total(alphas[k], A);
+        printf("albedo %.2f: exact %.4f, Monte Carlo %.4f, dipole %.4f\n", alphas[k], exact, mc, dip);
+        CHECK(fabs(exact - mc) < 0.005 + 0.01 * mc, "half-space albedo at %.2f: %.4f, the walk's %.4f", alphas[k], exact, mc);
+        CHECK(dip < exact, "the dipole's albedo is below the exact one at %.2f (%.4f < %.4f)", alphas[k], dip, exact);
+    }
+    CHECK(jd_halfspace_albedo(0) == 0 && jd_halfspace_albedo(1) == 1, "no scattering: nothing back; no absorption: all");
+}
+
 int main(int argc, char **argv)
 {
+    printf("the half-space's exact albedo:\n");
+    test_albedo();
     jd_mesh slab;
     make_slab(&slab);
     printf("slab under uniform light (100 mm square):\n");
