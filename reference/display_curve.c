@@ -17,3 +17,9 @@ float jd_display_to_linear(unsigned char v)
     double d = v / 255.0, t = d * d;
     return jd_shoulder_inverse(t > 0.999 ? 0.999 : t);
 }
+
+double jd_display_luminance(const unsigned char rgb[3])
+{
+    return 0.2126 * jd_display_to_linear(rgb[0]) + 0.7152 * jd_display_to_linear(rgb[1]) +
+           0.0722 * jd_display_to_linear(rgb[2]);
+}

@@ -13,12 +13,6 @@
 
 #include "display_curve.h"
 
-static double lum(const unsigned char *p)
-{
-    return 0.2126 * jd_display_to_linear(p[0]) + 0.7152 * jd_display_to_linear(p[1]) +
-           0.0722 * jd_display_to_linear(p[2]);
-}
-
 /* The first row after y0 where the profile passes level t, between rows. */
 static double crossing(const double *prof, int n, double t)
 {
@@ -53,7 +47,7 @@ int main(int argc, char **argv)
     if (!prof || !pos) { fprintf(stderr, "edge_measure: out of memory\n"); return 1; }
     double width = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
     for (int x = x0; x <= x1; x++) {
-        for (int i = 0; i < n; i++) prof[i] = lum(img + 3 * ((size_t)(y0 + i) * w + x));
+        for (int i = 0; i < n; i++) prof[i] = jd_display_luminance(img + 3 * ((size_t)(y0 + i) * w + x));
         double a = (prof[0] + prof[1] + prof[2]) / 3, b = (prof[n - 1] + prof[n - 2] + prof[n - 3]) / 3;
         double p20 = crossing(prof, n, a + 0.2 * (b - a)), p50 = crossing(prof, n, a + 0.5 * (b - a)),
                p80 = crossing(prof, n, a + 0.8 * (b - a));

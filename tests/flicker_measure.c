@@ -1,6 +1,6 @@
 /* flicker_measure MASK FRAME... : how much a still object's pixels jump
- * from frame to frame while the light moves. The frames are a closed orbit
- * (the last is followed by the first). Over the mask's pixels, luminance in
+ * from frame to frame while the light moves, the frames in order (the first
+ * and last count only as neighbours). Over the mask's pixels, luminance in
  * linear light: `step`, the RMS of one frame's change to the next (the
  * light's own motion moves shading smoothly), and `jerk`, the RMS of the
  * second difference f(t+1) - 2 f(t) + f(t-1): a smooth change leaves almost
@@ -37,8 +37,7 @@ int main(int argc, char **argv)
             return 1;
         }
         for (size_t i = 0; i < px; i++)
-            lum[k * px + i] = (float)(0.2126 * jd_display_to_linear(img[3 * i]) + 0.7152 * jd_display_to_linear(img[3 * i + 1]) +
-                                      0.0722 * jd_display_to_linear(img[3 * i + 2]));
+            lum[k * px + i] = (float)jd_display_luminance(img + 3 * i);
         stbi_image_free(img);
     }
     double s1 = 0, s2 = 0;
