@@ -41,18 +41,6 @@ int jd_cmd_reference(int argc, char **argv)
         fprintf(stderr, "jade reference: out of memory for a %dx%d picture\n", o.width, o.height);
         goto done;
     }
-    if (o.exact_albedo) {
-        /* The option's own error, named as such (jd_ref_create refuses it
-         * too, but its errors are the mesh's): the eta the scene resolves to. */
-        jd_scene_view v;
-        jd_scene_view_of(&o.scene, &s.mesh, (float)o.width / (float)o.height, &v);
-        if (fabsf(v.eta - 1.0f) > 1e-6f) {
-            fprintf(stderr, "jade reference: --exact-albedo: the exact albedo is known for an index-matched boundary "
-                            "only (eta 1, not %g)\n", (double)v.eta);
-            rc = 2;
-            goto done;
-        }
-    }
     if (jd_ref_create(&d, &ref, &st, &err) || jd_ref_render(ref, linear, mask, &st, &err)) {
         fprintf(stderr, "jade reference: %s: %s\n", s.mesh_path, err.msg);
         goto done;

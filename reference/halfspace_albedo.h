@@ -1,6 +1,7 @@
 /* The exact albedo of a half-space of isotropically scattering medium under
- * diffuse light, its boundary index-matched: what the dipole's total diffuse
- * reflectance approximates, from the transport equation itself. */
+ * diffuse light, behind an index-matched or a smooth dielectric boundary:
+ * what the dipole's total diffuse reflectance approximates, from the
+ * transport equation itself. */
 #ifndef JD_HALFSPACE_ALBEDO_H
 #define JD_HALFSPACE_ALBEDO_H
 
@@ -8,12 +9,18 @@
 extern "C" {
 #endif
 
-/* alpha: the single-scattering albedo (0..1). Chandrasekhar's result,
- * R = 1 - 2 sqrt(1 - alpha) * integral of H(mu) mu over [0, 1], H found by
- * iterating 1 / H(mu) = sqrt(1 - alpha) + alpha / 2 * integral of
- * mu' H(mu') / (mu + mu') dmu' (a form that converges near alpha = 1) on
- * 400 points. A few to 60 ms. */
-double jd_halfspace_albedo(double alpha);
+/* alpha: the single-scattering albedo (0..1); eta: the medium's refractive
+ * index over the outside's. The part of the diffuse light that entered
+ * which comes back out (the light the boundary reflects outright is not in
+ * it, as it is not in the dipole's Rd_total). Chandrasekhar's H-function on
+ * 400 points (a few to 60 ms); at eta 1 his closed form, else the boundary
+ * added by solving a 400 x 400 system (another 20 ms). Negative when out of
+ * memory (eta other than 1 takes 1.3 MB for the system). */
+double jd_halfspace_albedo(double alpha, double eta);
+
+/* Unpolarised Fresnel reflectance of a smooth boundary, going from index n1
+ * into n2 at the cosine cos_i; 1 past the critical angle. */
+double jd_fresnel_dielectric(double cos_i, double n1, double n2);
 
 #ifdef __cplusplus
 }

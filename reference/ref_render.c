@@ -285,17 +285,14 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     jd_dipole_init(&r->dp, s->sigma_s, s->sigma_a, r->view.eta, s->density > 0 ? s->density : 1.0f);
     for (int c = 0; c < 3; c++) r->albedo_scale[c] = 1.0f;
     if (desc->exact_albedo) {
-        /* The transport equation's albedo is known in closed form only where
-         * the boundary neither reflects nor refracts. */
-        double eta = r->view.eta;
-        if (fabs(eta - 1.0) > 1e-6) {
-            jd_ref_destroy(r);
-            return jd_fail(err, JD_ERR_ARG, "the exact albedo is known for an index-matched boundary only (eta 1, not %g)",
-                           eta);
+        for (int c = 0; c < 3; c++) {
+            double exact = jd_halfspace_albedo(r->dp.alpha[c], r->view.eta);
+            if (exact < 0) {
+                jd_ref_destroy(r);
+                return jd_fail(err, JD_ERR_BUDGET, "out of memory for the exact albedo's 400 x 400 system");
+            }
+            if (r->dp.rd_total[c] > 0) r->albedo_scale[c] = (float)(exact / r->dp.rd_total[c]);
         }
-        for (int c = 0; c < 3; c++)
-            if (r->dp.rd_total[c] > 0)
-                r->albedo_scale[c] = (float)(jd_halfspace_albedo(r->dp.alpha[c]) / r->dp.rd_total[c]);
     }
     r->st.mm_per_world = r->mm_per_world;
     r->st.threads = desc->threads > 0 ? desc->threads : core_count();
