@@ -70,58 +70,103 @@ static void solve(double *a, double *b, int n)
     }
 }
 
+/* R[j]: of unit flux going in at the inside's cosine mu[j], the part that
+ * comes back out. Index-matched, Chandrasekhar's 1 - H(mu) sqrt(1 - alpha).
+ * Else by adding the interface to the matched half-space (the adding
+ * method of radiative transfer, over the inside's direction cosines):
+ * K[i][j], the half-space's reflection, of unit flux going in at mu_j the
+ * part coming back at mu_i, alpha / 2 H(mu_i) H(mu_j) mu_i dmu / (mu_i +
+ * mu_j) (Chandrasekhar 1960, ch. IV); F(mu), the interface's reflectance
+ * seen from inside (1 past the critical angle). Flux d going in makes the
+ * upward flux u = K (d + F u), of which (1 - F) u leaves: (1 - F)^T (I -
+ * K F)^-1 K d. So y = (I - K F)^-T (1 - F) is solved once and R = y^T K.
+ * f[] gets F. 0, or -1 when out of memory. */
+static int beam_albedo(double alpha, double eta, const double *mu, double *R, double *f)
+{
+    const double w = 1.0 / HS_POINTS, s0 = sqrt(1.0 - alpha);
+    double h[HS_POINTS], tmp[HS_POINTS];
+    h_function(alpha, mu, h, tmp);
+    if (fabs(eta - 1.0) < 1e-9) {
+        for (int j = 0; j < HS_POINTS; j++) {
+            R[j] = 1.0 - h[j] * s0;
+            f[j] = 0.0;
+        }
+        return 0;
+    }
+    double *a = malloc(sizeof(double) * HS_POINTS * HS_POINTS), *k = malloc(sizeof(double) * HS_POINTS * HS_POINTS);
+    if (!a || !k) {
+        free(a);
+        free(k);
+        return -1;
+    }
+    for (int i = 0; i < HS_POINTS; i++) f[i] = jd_fresnel_dielectric(mu[i], eta, 1.0);
+    for (int i = 0; i < HS_POINTS; i++)
+        for (int j = 0; j < HS_POINTS; j++) {
+            double kij = 0.5 * alpha * h[i] * h[j] * mu[i] * w / (mu[i] + mu[j]);
+            k[(size_t)i * HS_POINTS + j] = kij;
+            /* (I - K F) transposed: row j, column i. */
+            a[(size_t)j * HS_POINTS + i] = (i == j ? 1.0 : 0.0) - kij * f[j];
+        }
+    double y[HS_POINTS];
+    for (int i = 0; i < HS_POINTS; i++) y[i] = 1.0 - f[i];
+    solve(a, y, HS_POINTS);
+    for (int j = 0; j < HS_POINTS; j++) {
+        double r = 0;
+        for (int i = 0; i < HS_POINTS; i++) r += y[i] * k[(size_t)i * HS_POINTS + j];
+        R[j] = r;
+    }
+    free(a);
+    free(k);
+    return 0;
+}
+
+static void points(double *mu)
+{
+    for (int i = 0; i < HS_POINTS; i++) mu[i] = (i + 0.5) / HS_POINTS;
+}
+
 double jd_halfspace_albedo(double alpha, double eta)
 {
     if (!(alpha > 0) || !(eta > 0)) return 0.0;
     if (alpha >= 1.0) return 1.0; /* nothing absorbed: all that entered comes back */
     const double w = 1.0 / HS_POINTS;
-    double mu[HS_POINTS], h[HS_POINTS], tmp[HS_POINTS];
-    for (int i = 0; i < HS_POINTS; i++) mu[i] = (i + 0.5) * w;
-    h_function(alpha, mu, h, tmp);
-    if (fabs(eta - 1.0) < 1e-9) {
-        /* Index-matched: Chandrasekhar's closed form, R = 1 - 2 sqrt(1 - alpha)
-         * * integral of H(mu) mu dmu. */
-        double m1 = 0;
-        for (int i = 0; i < HS_POINTS; i++) m1 += h[i] * mu[i] * w;
-        return 1.0 - 2.0 * sqrt(1.0 - alpha) * m1;
+    double mu[HS_POINTS], R[HS_POINTS], f[HS_POINTS];
+    points(mu);
+    if (beam_albedo(alpha, eta, mu, R, f)) return -1.0;
+    /* Diffuse light outside enters at mu with flux 2 eta^2 mu dmu (1 -
+     * F(mu)) (Snell: mu_e dmu_e = eta^2 mu dmu); of what entered, the part
+     * that comes back. The part the surface reflects outright is jade's
+     * highlight, not its subsurface light (nor in the dipole's Rd_total). */
+    double in = 0, out = 0;
+    for (int j = 0; j < HS_POINTS; j++) {
+        double d = 2.0 * eta * eta * mu[j] * w * (1.0 - f[j]);
+        in += d;
+        out += d * R[j];
     }
-    /* A smooth dielectric boundary, by adding the interface to the matched
-     * half-space (the adding method of radiative transfer, over the inside's
-     * direction cosines). K[i][j], the half-space's reflection: of unit flux
-     * going in at mu_j, the part coming back at mu_i, alpha / 2 H(mu_i)
-     * H(mu_j) mu_i dmu / (mu_i + mu_j) (Chandrasekhar 1960, ch. IV). F(mu),
-     * the interface's reflectance seen from inside (1 past the critical
-     * angle). Diffuse light outside enters at mu with flux 2 eta^2 mu dmu
-     * (1 - F(mu)) (Snell: mu_e dmu_e = eta^2 mu dmu), d0. The upward flux u
-     * then solves u = K (d0 + F u), and (1 - F) u leaves. */
-    double *a = malloc(sizeof(double) * HS_POINTS * HS_POINTS), *u = malloc(sizeof(double) * HS_POINTS);
-    double f[HS_POINTS];
-    if (!a || !u) {
-        free(a);
-        free(u);
-        return -1.0;
+    return in > 0 ? out / in : 0.0;
+}
+
+int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out)
+{
+    if (n < 2) return -1;
+    double mu[HS_POINTS], R[HS_POINTS], f[HS_POINTS];
+    points(mu);
+    if (!(alpha > 0) || !(eta > 0) || alpha >= 1.0) {
+        for (int k = 0; k < n; k++) out[k] = alpha >= 1.0 ? 1.0 : 0.0;
+        return 0;
     }
-    double entered = 0;
-    for (int i = 0; i < HS_POINTS; i++) {
-        f[i] = jd_fresnel_dielectric(mu[i], eta, 1.0);
-        tmp[i] = 2.0 * eta * eta * mu[i] * w * (1.0 - f[i]);
-        entered += tmp[i];
-    }
-    for (int i = 0; i < HS_POINTS; i++) {
-        double kd = 0;
-        for (int j = 0; j < HS_POINTS; j++) {
-            double k = 0.5 * alpha * h[i] * h[j] * mu[i] * w / (mu[i] + mu[j]);
-            kd += k * tmp[j];
-            a[(size_t)i * HS_POINTS + j] = (i == j ? 1.0 : 0.0) - k * f[j];
+    if (beam_albedo(alpha, eta, mu, R, f)) return -1;
+    for (int k = 0; k < n; k++) {
+        /* The outside's cosine to the inside's (Snell), then linear between
+         * the points, held at the ends. */
+        double mu_e = (double)k / (n - 1), mi = sqrt(fmax(0.0, 1.0 - (1.0 - mu_e * mu_e) / (eta * eta)));
+        double x = mi * HS_POINTS - 0.5;
+        if (x <= 0) out[k] = R[0];
+        else if (x >= HS_POINTS - 1) out[k] = R[HS_POINTS - 1];
+        else {
+            int i = (int)x;
+            out[k] = R[i] + (x - i) * (R[i + 1] - R[i]);
         }
-        u[i] = kd;
     }
-    solve(a, u, HS_POINTS);
-    double out = 0;
-    for (int i = 0; i < HS_POINTS; i++) out += (1.0 - f[i]) * u[i];
-    free(a);
-    free(u);
-    /* Of the light that entered: the part the surface reflects outright is
-     * jade's highlight, not its subsurface light. */
-    return entered > 0 ? out / entered : 0.0;
+    return 0;
 }

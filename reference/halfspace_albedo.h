@@ -13,10 +13,15 @@ extern "C" {
  * index over the outside's. The part of the diffuse light that entered
  * which comes back out (the light the boundary reflects outright is not in
  * it, as it is not in the dipole's Rd_total). Chandrasekhar's H-function on
- * 400 points (a few to 60 ms); at eta 1 his closed form, else the boundary
- * added by solving a 400 x 400 system (another 20 ms). Negative when out of
- * memory (eta other than 1 takes 1.3 MB for the system). */
+ * 400 points (a few to 60 ms); at eta other than 1 the boundary added by
+ * solving a 400 x 400 system (another 20 ms). Negative when out of memory
+ * (eta other than 1 takes 2.6 MB for the system). */
 double jd_halfspace_albedo(double alpha, double eta);
+
+/* The same for a beam: out[k], of the light of a beam at the outside's
+ * cosine k / (n - 1) that entered, the part that comes back out (n >= 2).
+ * 0, or -1 when out of memory or n < 2. */
+int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out);
 
 /* Unpolarised Fresnel reflectance of a smooth boundary, going from index n1
  * into n2 at the cosine cos_i; 1 past the critical angle. */

@@ -18,6 +18,8 @@
 #include "ref_samples.h"
 #include "vmath.h"
 
+enum { JD_BEAM_STEPS = 64 }; /* the beam's albedo table: its cosine in 64 steps */
+
 struct jd_ref {
     jd_ref_desc d;
     float *pos;          /* normalised world positions */
@@ -32,7 +34,10 @@ struct jd_ref {
     float *pt_alb;
     jd_diffusion diff;
     jd_dipole dp;
-    float albedo_scale[3]; /* --exact-albedo: the half-space's albedo over the dipole's, per channel; else 1 */
+    /* --exact-albedo: the half-space's albedo over the dipole's, per
+     * channel, for diffuse light (the ambient) and for the light's beam by
+     * its cosine, 0..1 in JD_BEAM_STEPS; else 1. */
+    float albedo_scale[3], beam_scale[3][JD_BEAM_STEPS + 1];
     jd_scene_view view;
     float mm_per_world, eps;
     float light[3];
@@ -198,13 +203,25 @@ static int light_visible(const jd_ref *r, const float p[3], const float ng[3])
 /* Irradiance entering the surface at p (outward normal n, geometric ng). */
 static void irradiance(const jd_ref *r, const float p[3], const float n[3], const float ng[3], float e[3])
 {
-    if (r->d.irradiance) { r->d.irradiance(r->d.user, p, n, e); return; }
+    if (r->d.irradiance) {
+        r->d.irradiance(r->d.user, p, n, e);
+        for (int c = 0; c < 3; c++) e[c] *= r->albedo_scale[c];
+        return;
+    }
     const jd_scene *s = &r->d.scene;
     float amb = s->ambient, direct = 0;
     float ndl = dot3(n, r->light);
     if (ndl > 0 && s->light_intensity > 0 && light_visible(r, p, ng))
         direct = s->light_intensity * ndl * fresnel_t(r, ndl) / r->fresnel_norm;
-    for (int c = 0; c < 3; c++) e[c] = amb + direct;
+    /* With --exact-albedo the light's own share by its angle: a beam near
+     * the normal goes deeper and less of it comes back than of diffuse
+     * light. Linear between the table's cosines. */
+    float x = (ndl > 1.0f ? 1.0f : ndl < 0.0f ? 0.0f : ndl) * JD_BEAM_STEPS;
+    int i = x >= JD_BEAM_STEPS ? JD_BEAM_STEPS - 1 : (int)x;
+    for (int c = 0; c < 3; c++) {
+        float b = r->beam_scale[c][i] + (x - (float)i) * (r->beam_scale[c][i + 1] - r->beam_scale[c][i]);
+        e[c] = amb * r->albedo_scale[c] + direct * b;
+    }
 }
 
 /* ---- set-up ---------------------------------------------------------- */
@@ -283,15 +300,20 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     r->f0 = r->view.f0;
     r->fresnel_norm = (1.0f - r->f0) * 20.0f / 21.0f;
     jd_dipole_init(&r->dp, s->sigma_s, s->sigma_a, r->view.eta, s->density > 0 ? s->density : 1.0f);
-    for (int c = 0; c < 3; c++) r->albedo_scale[c] = 1.0f;
+    for (int c = 0; c < 3; c++) {
+        r->albedo_scale[c] = 1.0f;
+        for (int k = 0; k <= JD_BEAM_STEPS; k++) r->beam_scale[c][k] = 1.0f;
+    }
     if (desc->exact_albedo) {
         for (int c = 0; c < 3; c++) {
-            double exact = jd_halfspace_albedo(r->dp.alpha[c], r->view.eta);
-            if (exact < 0) {
+            double exact = jd_halfspace_albedo(r->dp.alpha[c], r->view.eta), beam[JD_BEAM_STEPS + 1];
+            if (exact < 0 || jd_halfspace_albedo_beam(r->dp.alpha[c], r->view.eta, JD_BEAM_STEPS + 1, beam)) {
                 jd_ref_destroy(r);
                 return jd_fail(err, JD_ERR_BUDGET, "out of memory for the exact albedo's 400 x 400 system");
             }
-            if (r->dp.rd_total[c] > 0) r->albedo_scale[c] = (float)(exact / r->dp.rd_total[c]);
+            if (!(r->dp.rd_total[c] > 0)) continue;
+            r->albedo_scale[c] = (float)(exact / r->dp.rd_total[c]);
+            for (int k = 0; k <= JD_BEAM_STEPS; k++) r->beam_scale[c][k] = (float)(beam[k] / r->dp.rd_total[c]);
         }
     }
     r->st.mm_per_world = r->mm_per_world;
@@ -417,7 +439,6 @@ static int pixel_ray(px_ctx *c, float fx, float fy, float o[3], uint64_t *evals)
     irradiance(r, p, n, ng, ev);
     for (int k = 0; k < 3; k++) xm[k] = p[k] * r->mm_per_world;
     *evals += jd_diffusion_exitance(&r->diff, xm, ev, mo);
-    for (int k = 0; k < 3; k++) mo[k] *= r->albedo_scale[k];
     if (r->d.mesh->colors) {
         float fo[3];
         albedo_factor(r, hit.tri, hit.u, hit.v, fo);

@@ -29,9 +29,11 @@ gain() { "$jade" metric "$1" "$2" --mask "$tmp/mask.png" | sed -n 's/.*"best_sca
 within() { if awk -v v="$2" -v b="$3" 'BEGIN { exit !(v != "" && v <= b) }'; then ok "$1 $2 <= $3"; else bad "$1 $2, over $3"; fi; }
 closer() { if awk -v a="$2" -v b="$3" 'BEGIN { exit !(a != "" && a < b) }'; then ok "$1 ($2 < $3)"; else bad "$1: $2, not below $3"; fi; }
 # jade reference --exact-albedo (the half-space's albedo for the dipole's, at
-# eta 1) is held as well: in geometric mean over the sixteen comparisons it
-# is closer to Cycles than the dipole's reference, and for the absorbing
-# materials (skin1, ketchup) closer to the walk in every case.
+# eta 1: the light's beam by its angle, the ambient as diffuse light) is held
+# as well: in geometric mean over the sixteen comparisons it is closer to
+# Cycles than the dipole's reference (0.815 when measured; held under 0.9),
+# and for the absorbing materials (skin1, ketchup) closer to the walk in
+# every case.
 logsum=0
 # material light azimuth elevation, then today's RMSE of the reference and
 # full against the matched medium, then against the random walk, then the
@@ -71,15 +73,15 @@ while read -r mat light az el ref_today full_today wref_today wfull_today xref_t
         closer "$mat back: full closer than none to the walk" "$wfull" "$wnone"
     fi
 done <<'CASES'
-marble front -30 40 0.0673 0.0704 0.0493 0.0665 0.0738 0.0505
-marble back 170 35 0.0721 0.0839 0.0561 0.0699 0.0690 0.0537
-skin1 front -30 40 0.0529 0.0587 0.0838 0.0958 0.0548 0.0401
-skin1 back 170 35 0.0711 0.0731 0.0494 0.0544 0.0559 0.0339
-ketchup front -30 40 0.0324 0.0391 0.0811 0.0889 0.0194 0.0563
-ketchup back 170 35 0.0443 0.0470 0.0508 0.0532 0.0336 0.0400
-wholemilk front -30 40 0.0672 0.0719 0.0499 0.0655 0.0730 0.0523
-wholemilk back 170 35 0.0689 0.0822 0.0545 0.0691 0.0663 0.0525
+marble front -30 40 0.0673 0.0704 0.0493 0.0665 0.0679 0.0470
+marble back 170 35 0.0721 0.0839 0.0561 0.0699 0.0678 0.0530
+skin1 front -30 40 0.0529 0.0587 0.0838 0.0958 0.0396 0.0493
+skin1 back 170 35 0.0711 0.0731 0.0494 0.0544 0.0528 0.0323
+ketchup front -30 40 0.0324 0.0391 0.0811 0.0889 0.0171 0.0611
+ketchup back 170 35 0.0443 0.0470 0.0508 0.0532 0.0329 0.0400
+wholemilk front -30 40 0.0672 0.0719 0.0499 0.0655 0.0677 0.0486
+wholemilk back 170 35 0.0689 0.0822 0.0545 0.0691 0.0652 0.0519
 CASES
 gm=$(awk -v s="$logsum" 'BEGIN { printf "%.3f", exp(s / 16) }')
-closer "the exact-albedo reference's RMSE over the dipole's, geometric mean of 16" "$gm" 1
+closer "the exact-albedo reference's RMSE over the dipole's, geometric mean of 16" "$gm" 0.9
 finish cycles_truth

@@ -323,12 +323,13 @@ static double fresnel(double ci, double n1, double n2)
     return 0.5 * (a * a + b * b);
 }
 
-static double walk_albedo(double alpha, double eta, int photons)
+/* beam_mu: the outside's cosine of a beam, or negative for diffuse light. */
+static double walk_albedo(double alpha, double eta, double beam_mu, int photons)
 {
     double out = 0;
     int entered = 0;
     for (int i = 0; i < photons; i++) {
-        double mu_e = sqrt(mc_uniform()); /* cosine-weighted, from outside */
+        double mu_e = beam_mu >= 0 ? beam_mu : sqrt(mc_uniform()); /* diffuse: cosine-weighted */
         if (mc_uniform() < fresnel(mu_e, 1.0, eta)) continue; /* reflected outright */
         entered++;
         double z = 0, mu = sqrt(1 - (1 - mu_e * mu_e) / (eta * eta)), w = 1;
@@ -359,11 +360,25 @@ static void test_albedo(void)
     const double alphas[] = {0.3, 0.68, 0.9, 0.99}, etas[] = {1.0, 1.3, 1.5};
     for (int e = 0; e < 3; e++)
         for (int k = 0; k < 4; k++) {
-            double exact = jd_halfspace_albedo(alphas[k], etas[e]), mc = walk_albedo(alphas[k], etas[e], 400000);
+            double exact = jd_halfspace_albedo(alphas[k], etas[e]), mc = walk_albedo(alphas[k], etas[e], -1, 400000);
             double A = (1 + jd_dipole_fdr(etas[e])) / (1 - jd_dipole_fdr(etas[e])), dip = jd_dipole_rd_total(alphas[k], A);
             printf("eta %.1f, albedo %.2f: exact %.4f, Monte Carlo %.4f, dipole %.4f\n", etas[e], alphas[k], exact, mc, dip);
             CHECK(fabs(exact - mc) < 0.005 + 0.01 * mc, "half-space albedo at eta %.1f, %.2f: %.4f, the walk's %.4f", etas[e],
                   alphas[k], exact, mc);
+        }
+    /* A beam: normal and at 60 degrees, where the light goes deeper or
+     * shallower than diffuse light's and less or more of it comes back. */
+    for (int e = 0; e < 3; e += 2)
+        for (int k = 2; k < 4; k++) {
+            double b[3];
+            CHECK(jd_halfspace_albedo_beam(alphas[k], etas[e], 3, b) == 0, "the beam's albedo computed");
+            for (int q = 1; q < 3; q++) {
+                double mc = walk_albedo(alphas[k], etas[e], 0.5 * q, 400000);
+                printf("eta %.1f, albedo %.2f, a beam at cosine %.1f: exact %.4f, Monte Carlo %.4f\n", etas[e], alphas[k],
+                       0.5 * q, b[q], mc);
+                CHECK(fabs(b[q] - mc) < 0.005 + 0.01 * mc, "beam at %.1f, eta %.1f, albedo %.2f: %.4f, the walk's %.4f", 0.5 * q,
+                      etas[e], alphas[k], b[q], mc);
+            }
         }
     CHECK(jd_halfspace_albedo(0, 1.5) == 0 && jd_halfspace_albedo(1, 1.5) == 1, "no scattering: nothing back; no absorption: all");
 }
