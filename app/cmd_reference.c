@@ -28,7 +28,7 @@ int jd_cmd_reference(int argc, char **argv)
 
     jd_ref_desc d = {.mesh = &s.mesh, .scene = o.scene, .width = o.width, .height = o.height,
                      .samples = (uint32_t)o.samples, .error = o.ref_error, .window_mm = o.window_mm,
-                     .pixel_samples = o.pixel_samples, .exact_albedo = o.exact_albedo,
+                     .pixel_samples = o.pixel_samples,
                      .threads = o.threads, .progress = !o.quiet, .seed = (uint32_t)o.seed};
     size_t n = (size_t)o.width * o.height;
     float *linear = malloc(n * 3 * sizeof(float));

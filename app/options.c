@@ -47,8 +47,6 @@ static const opt table[] = {
     {"--threads", T_INT, OFF(threads), 1, 256, JD_OPT_REFERENCE, "N          [every core]"},
     {"--seed", T_INT, OFF(seed), 0, 1000000000, JD_OPT_REFERENCE, "N          sample placement [0]"},
     {"--quiet", T_FLAG, OFF(quiet), 0, 0, JD_OPT_REFERENCE, "           no progress bar"},
-    {"--exact-albedo", T_FLAG, OFF(exact_albedo), 0, 0, JD_OPT_REFERENCE,
-     "           the half-space's exact albedo (H-function, Fresnel boundary added) for the dipole's"},
     {"--mask", T_PATH, OFF(mask_in), 0, 0, JD_OPT_METRIC, "FILE.png   the object's pixels (nonzero) [where either picture differs from its corner]"},
     {"--screenshot", T_PATH, OFF(screenshot), 0, 0, V | K,
      "FILE.png   view: write the last frame (with --frames); kiosk: at the end, what the display scans out, read back by its writeback connector (drm)"},

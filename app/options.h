@@ -24,7 +24,6 @@ typedef struct jd_options {
     int samples, threads, seed, quiet;
     float ref_error, window_mm;
     int pixel_samples;
-    int exact_albedo;
     const char *drm_device, *connector, *display_mode;
     int rotation;
     int atomic;

@@ -1,5 +1,7 @@
 #include "material.h"
 
+#include "albedo_table.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -42,17 +44,32 @@ double jd_dipole_rd_total(double alpha, double A)
     return 0.5 * alpha * (1.0 + exp(-(4.0 / 3.0) * A * s)) * exp(-s);
 }
 
+double jd_albedo_ratio(double alpha, double eta)
+{
+    double x = sqrt(1.0 - (alpha < 0 ? 0 : alpha > 1 ? 1 : alpha)) * (JD_ALBEDO_XS - 1);
+    double e = ((eta < 1 ? 1 : eta > 3 ? 3 : eta) - 1.0) / 0.05;
+    int i = x >= JD_ALBEDO_XS - 1 ? JD_ALBEDO_XS - 2 : (int)x, k = e >= JD_ALBEDO_ETAS - 1 ? JD_ALBEDO_ETAS - 2 : (int)e;
+    double fx = x - i, fe = e - k;
+    const float *a = jd_albedo_ratio_table[k], *b = jd_albedo_ratio_table[k + 1];
+    return (1 - fe) * ((1 - fx) * a[i] + fx * a[i + 1]) + fe * ((1 - fx) * b[i] + fx * b[i + 1]);
+}
+
+double jd_albedo_total(double alpha, double eta)
+{
+    double fdr = jd_dipole_fdr(eta), A = (1.0 + fdr) / (1.0 - fdr);
+    return jd_dipole_rd_total(alpha, A) * jd_albedo_ratio(alpha, eta);
+}
+
 void jd_material_from_reflectance(const float rd[3], const float ld_mm[3], float eta, float sigma_s[3],
                                   float sigma_a[3])
 {
-    double fdr = jd_dipole_fdr(eta), A = (1.0 + fdr) / (1.0 - fdr);
     for (int c = 0; c < 3; c++) {
         double want = rd[c] < 0.001f ? 0.001 : rd[c] > 0.95f ? 0.95 : rd[c];
-        /* Rd_total(alpha') rises from 0 to 1 as alpha' goes from 0 to 1. */
+        /* The albedo rises from 0 to 1 as alpha' goes from 0 to 1. */
         double lo = 0.0, hi = 1.0;
         for (int i = 0; i < 60; i++) {
             double mid = 0.5 * (lo + hi);
-            if (jd_dipole_rd_total(mid, A) < want) lo = mid; else hi = mid;
+            if (jd_albedo_total(mid, eta) < want) lo = mid; else hi = mid;
         }
         double alpha = 0.5 * (lo + hi), ld = ld_mm[c] > 1e-3f ? ld_mm[c] : 1e-3;
         double sigma_t = 1.0 / (ld * sqrt(3.0 * (1.0 - alpha)));
@@ -73,7 +90,10 @@ void jd_dipole_init(jd_dipole *d, const float sigma_s[3], const float sigma_a[3]
         d->sigma_tr[c] = sqrt(3.0 * sa * d->sigma_t[c]);
         d->zr[c] = d->sigma_t[c] > 0 ? 1.0 / d->sigma_t[c] : 0.0;
         d->zv[c] = d->zr[c] * (1.0 + 4.0 * d->A / 3.0);
-        d->rd_total[c] = jd_dipole_rd_total(d->alpha[c], d->A);
+        /* The profile's shape is the dipole's, its total the transport
+         * equation's (docs/quality.md, "At jade's own eta"). */
+        d->ratio[c] = jd_albedo_ratio(d->alpha[c], eta);
+        d->rd_total[c] = jd_dipole_rd_total(d->alpha[c], d->A) * d->ratio[c];
     }
 }
 
@@ -81,7 +101,7 @@ double jd_dipole_tail(const jd_dipole *d, int c, double t)
 {
     double dr = sqrt(t * t + d->zr[c] * d->zr[c]), dv = sqrt(t * t + d->zv[c] * d->zv[c]);
     if (dr <= 0 || dv <= 0) return 0.0;
-    return 0.5 * d->alpha[c] *
+    return 0.5 * d->alpha[c] * d->ratio[c] *
            (d->zr[c] / dr * exp(-d->sigma_tr[c] * dr) + d->zv[c] / dv * exp(-d->sigma_tr[c] * dv));
 }
 
@@ -89,7 +109,7 @@ double jd_dipole_rd(const jd_dipole *d, int c, double r)
 {
     double dr = sqrt(r * r + d->zr[c] * d->zr[c]), dv = sqrt(r * r + d->zv[c] * d->zv[c]);
     double s = d->sigma_tr[c];
-    return d->alpha[c] / (4.0 * M_PI) *
+    return d->alpha[c] * d->ratio[c] / (4.0 * M_PI) *
            (d->zr[c] * (1.0 + s * dr) * exp(-s * dr) / (dr * dr * dr) +
             d->zv[c] * (1.0 + s * dv) * exp(-s * dv) / (dv * dv * dv));
 }

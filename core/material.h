@@ -22,7 +22,9 @@ const jd_material *jd_material_find(const char *name);
 typedef struct jd_dipole {
     double sigma_t[3], alpha[3], sigma_tr[3], zr[3], zv[3];
     double fdr, A;
-    double rd_total[3];
+    /* ratio: the exact half-space albedo over the dipole's at this eta
+     * (jd_albedo_ratio), which scales the profile; rd_total: its integral. */
+    double ratio[3], rd_total[3];
 } jd_dipole;
 
 /* density scales both coefficients. */
@@ -31,12 +33,22 @@ void jd_dipole_init(jd_dipole *d, const float sigma_s[3], const float sigma_a[3]
 double jd_dipole_fdr(double eta);
 /* The material whose total diffuse reflectance is rd and whose diffuse mean
  * free path (1 / sigma_tr) is ld_mm, per channel: Jensen and Buhler 2002's
- * inversion (Rd_total(alpha') = rd solved for the reduced albedo alpha' by
+ * inversion (jd_albedo_total(alpha') = rd solved for the reduced albedo alpha' by
  * bisection, then sigma_t' = 1 / (ld sqrt(3 (1 - alpha')))). rd is held to
  * 0.001..0.95. */
 void jd_material_from_reflectance(const float rd[3], const float ld_mm[3], float eta, float sigma_s[3],
                                   float sigma_a[3]);
+/* The classical dipole's total diffuse reflectance (Jensen et al. 2001). */
 double jd_dipole_rd_total(double alpha, double A);
+/* The exact albedo of an isotropically scattering half-space behind a
+ * smooth boundary of index eta, under diffuse light (of the light that
+ * entered), over jd_dipole_rd_total: from the transport equation
+ * (reference/halfspace_albedo.c), tabulated in core/albedo_table.c and read
+ * bilinearly; eta held to 1..3. */
+double jd_albedo_ratio(double alpha, double eta);
+/* jd_dipole_rd_total at eta's A times jd_albedo_ratio: the albedo jade
+ * renders with. */
+double jd_albedo_total(double alpha, double eta);
 /* Exitance from unit irradiance on every entry point at distance >= t mm. */
 double jd_dipole_tail(const jd_dipole *d, int channel, double t_mm);
 /* Diffusion profile Rd(r), r in mm. */

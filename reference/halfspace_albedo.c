@@ -125,14 +125,10 @@ static void points(double *mu)
     for (int i = 0; i < HS_POINTS; i++) mu[i] = (i + 0.5) / HS_POINTS;
 }
 
-double jd_halfspace_albedo(double alpha, double eta)
+/* Of diffuse light that entered, the part that comes back, from R and F. */
+static double diffuse_albedo(double eta, const double *mu, const double *R, const double *f)
 {
-    if (!(alpha > 0) || !(eta > 0)) return 0.0;
-    if (alpha >= 1.0) return 1.0; /* nothing absorbed: all that entered comes back */
     const double w = 1.0 / HS_POINTS;
-    double mu[HS_POINTS], R[HS_POINTS], f[HS_POINTS];
-    points(mu);
-    if (beam_albedo(alpha, eta, mu, R, f)) return -1.0;
     /* Diffuse light outside enters at mu with flux 2 eta^2 mu dmu (1 -
      * F(mu)) (Snell: mu_e dmu_e = eta^2 mu dmu); of what entered, the part
      * that comes back. The part the surface reflects outright is jade's
@@ -146,16 +142,33 @@ double jd_halfspace_albedo(double alpha, double eta)
     return in > 0 ? out / in : 0.0;
 }
 
-int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out)
+double jd_halfspace_albedo(double alpha, double eta)
+{
+    if (!(alpha > 0) || !(eta > 0)) return 0.0;
+    if (alpha >= 1.0) return 1.0; /* nothing absorbed: all that entered comes back */
+    double mu[HS_POINTS], R[HS_POINTS], f[HS_POINTS];
+    points(mu);
+    if (beam_albedo(alpha, eta, mu, R, f)) return -1.0;
+    return diffuse_albedo(eta, mu, R, f);
+}
+
+int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out, double *diffuse)
 {
     if (n < 2) return -1;
     double mu[HS_POINTS], R[HS_POINTS], f[HS_POINTS];
     points(mu);
     if (!(alpha > 0) || !(eta > 0) || alpha >= 1.0) {
         for (int k = 0; k < n; k++) out[k] = alpha >= 1.0 ? 1.0 : 0.0;
+        if (diffuse) *diffuse = alpha >= 1.0 ? 1.0 : 0.0;
         return 0;
     }
     if (beam_albedo(alpha, eta, mu, R, f)) return -1;
+    if (diffuse) {
+        /* At eta 1 Chandrasekhar's closed form, as jd_halfspace_albedo. */
+        double m1 = 0, h0 = sqrt(1.0 - alpha);
+        for (int i = 0; i < HS_POINTS && fabs(eta - 1.0) < 1e-9; i++) m1 += (1.0 - R[i]) / h0 * mu[i] / HS_POINTS;
+        *diffuse = fabs(eta - 1.0) < 1e-9 ? 1.0 - 2.0 * h0 * m1 : diffuse_albedo(eta, mu, R, f);
+    }
     for (int k = 0; k < n; k++) {
         /* The outside's cosine to the inside's (Snell), then linear between
          * the points, held at the ends. */

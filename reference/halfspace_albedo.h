@@ -19,9 +19,10 @@ extern "C" {
 double jd_halfspace_albedo(double alpha, double eta);
 
 /* The same for a beam: out[k], of the light of a beam at the outside's
- * cosine k / (n - 1) that entered, the part that comes back out (n >= 2).
- * 0, or -1 when out of memory or n < 2. */
-int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out);
+ * cosine k / (n - 1) that entered, the part that comes back out (n >= 2);
+ * *diffuse, when not NULL, jd_halfspace_albedo's figure from the same
+ * solution. 0, or -1 when out of memory or n < 2. */
+int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out, double *diffuse);
 
 /* Unpolarised Fresnel reflectance of a smooth boundary, going from index n1
  * into n2 at the cosine cos_i; 1 past the critical angle. */

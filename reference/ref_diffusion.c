@@ -184,7 +184,7 @@ jd_result jd_diffusion_build(jd_diffusion *d, jd_ref_point *pts, uint32_t n, con
         d->zr2[c] = d->zr[c] * d->zr[c];
         d->zv2[c] = d->zv[c] * d->zv[c];
         d->str[c] = (float)dp->sigma_tr[c];
-        d->k[c] = (float)(dp->alpha[c] / (4.0 * M_PI));
+        d->k[c] = (float)(dp->alpha[c] * dp->ratio[c] / (4.0 * M_PI));
         /* Rd w over the plane, r in [0, r0]: Simpson on a fine grid (Rd is
          * smooth at the scale of z_r, and the grid is far finer). */
         const int steps = 4096;

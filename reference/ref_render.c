@@ -34,10 +34,10 @@ struct jd_ref {
     float *pt_alb;
     jd_diffusion diff;
     jd_dipole dp;
-    /* --exact-albedo: the half-space's albedo over the dipole's, per
-     * channel, for diffuse light (the ambient) and for the light's beam by
-     * its cosine, 0..1 in JD_BEAM_STEPS; else 1. */
-    float albedo_scale[3], beam_scale[3][JD_BEAM_STEPS + 1];
+    /* The light's beam by its cosine (0..1 in JD_BEAM_STEPS): the
+     * half-space's albedo for that beam over its albedo for diffuse light,
+     * which the dipole's profile already has (jd_albedo_ratio), per channel. */
+    float beam_scale[3][JD_BEAM_STEPS + 1];
     jd_scene_view view;
     float mm_per_world, eps;
     float light[3];
@@ -203,24 +203,20 @@ static int light_visible(const jd_ref *r, const float p[3], const float ng[3])
 /* Irradiance entering the surface at p (outward normal n, geometric ng). */
 static void irradiance(const jd_ref *r, const float p[3], const float n[3], const float ng[3], float e[3])
 {
-    if (r->d.irradiance) {
-        r->d.irradiance(r->d.user, p, n, e);
-        for (int c = 0; c < 3; c++) e[c] *= r->albedo_scale[c];
-        return;
-    }
+    if (r->d.irradiance) { r->d.irradiance(r->d.user, p, n, e); return; }
     const jd_scene *s = &r->d.scene;
     float amb = s->ambient, direct = 0;
     float ndl = dot3(n, r->light);
     if (ndl > 0 && s->light_intensity > 0 && light_visible(r, p, ng))
         direct = s->light_intensity * ndl * fresnel_t(r, ndl) / r->fresnel_norm;
-    /* With --exact-albedo the light's own share by its angle: a beam near
-     * the normal goes deeper and less of it comes back than of diffuse
-     * light. Linear between the table's cosines. */
+    /* The light's own share by its angle: a beam near the normal goes
+     * deeper and less of it comes back than of diffuse light (the ambient).
+     * Linear between the table's cosines. */
     float x = (ndl > 1.0f ? 1.0f : ndl < 0.0f ? 0.0f : ndl) * JD_BEAM_STEPS;
     int i = x >= JD_BEAM_STEPS ? JD_BEAM_STEPS - 1 : (int)x;
     for (int c = 0; c < 3; c++) {
         float b = r->beam_scale[c][i] + (x - (float)i) * (r->beam_scale[c][i + 1] - r->beam_scale[c][i]);
-        e[c] = amb * r->albedo_scale[c] + direct * b;
+        e[c] = amb + direct * b;
     }
 }
 
@@ -301,20 +297,12 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     r->fresnel_norm = (1.0f - r->f0) * 20.0f / 21.0f;
     jd_dipole_init(&r->dp, s->sigma_s, s->sigma_a, r->view.eta, s->density > 0 ? s->density : 1.0f);
     for (int c = 0; c < 3; c++) {
-        r->albedo_scale[c] = 1.0f;
-        for (int k = 0; k <= JD_BEAM_STEPS; k++) r->beam_scale[c][k] = 1.0f;
-    }
-    if (desc->exact_albedo) {
-        for (int c = 0; c < 3; c++) {
-            double exact = jd_halfspace_albedo(r->dp.alpha[c], r->view.eta), beam[JD_BEAM_STEPS + 1];
-            if (exact < 0 || jd_halfspace_albedo_beam(r->dp.alpha[c], r->view.eta, JD_BEAM_STEPS + 1, beam)) {
-                jd_ref_destroy(r);
-                return jd_fail(err, JD_ERR_BUDGET, "out of memory for the exact albedo's 400 x 400 system");
-            }
-            if (!(r->dp.rd_total[c] > 0)) continue;
-            r->albedo_scale[c] = (float)(exact / r->dp.rd_total[c]);
-            for (int k = 0; k <= JD_BEAM_STEPS; k++) r->beam_scale[c][k] = (float)(beam[k] / r->dp.rd_total[c]);
+        double diffuse = 0, beam[JD_BEAM_STEPS + 1];
+        if (jd_halfspace_albedo_beam(r->dp.alpha[c], r->view.eta, JD_BEAM_STEPS + 1, beam, &diffuse)) {
+            jd_ref_destroy(r);
+            return jd_fail(err, JD_ERR_BUDGET, "out of memory for the half-space albedo's 400 x 400 system");
         }
+        for (int k = 0; k <= JD_BEAM_STEPS; k++) r->beam_scale[c][k] = diffuse > 0 ? (float)(beam[k] / diffuse) : 1.0f;
     }
     r->st.mm_per_world = r->mm_per_world;
     r->st.threads = desc->threads > 0 ? desc->threads : core_count();

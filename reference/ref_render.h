@@ -32,8 +32,6 @@ typedef struct jd_ref_desc {
     int threads;             /* [0: every core] */
     int progress;            /* a live progress bar on stderr */
     uint32_t seed;           /* sample placement */
-    int exact_albedo;        /* the half-space's exact albedo (halfspace_albedo.h) in place of the
-                                dipole's Rd_total, the profile scaled to it; eta 1 only */
     /* Tests: replaces the light's irradiance (world position, outward normal). */
     void (*irradiance)(void *user, const float p[3], const float n[3], float e[3]);
     void *user;

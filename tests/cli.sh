@@ -47,8 +47,6 @@ if cmp -s "$tmp/amb0.png" "$tmp/amb1.png"; then fail=$((fail + 1)); echo "FAIL -
 expect "reference without ambient" 0 "wrote" -- "$jade" reference --size 24x24 --samples 20000 --quiet --out "$tmp/ramb0.png" --ambient 0 --specular 0
 expect "reference with ambient" 0 "wrote" -- "$jade" reference --size 24x24 --samples 20000 --quiet --out "$tmp/ramb1.png"
 # The half-space's exact albedo is known for an index-matched boundary only.
-expect "reference --exact-albedo at eta 1" 0 "wrote" -- "$jade" reference --size 24x24 --samples 20000 --quiet --out "$tmp/rex.png" --eta 1 --exact-albedo
-expect "reference --exact-albedo at marble's eta" 0 "wrote" -- "$jade" reference --size 24x24 --samples 20000 --quiet --out "$tmp/rex2.png" --exact-albedo
 if cmp -s "$tmp/ramb0.png" "$tmp/ramb1.png"; then fail=$((fail + 1)); echo "FAIL jade reference --ambient 0 left the picture as it was"; else pass=$((pass + 1)); fi
 expect "negative ambient" 2 "--ambient: expected a number from 0 to 100" -- "$jade" render --ambient -1
 expect "a triple with four" 2 "three numbers" -- "$jade" render --sigma-s 1,2,3,4

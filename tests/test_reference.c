@@ -8,8 +8,10 @@
  *   3. doubling the samples, and tightening the octree's error bound, change
  *      the picture by less than the stated tolerances;
  *   4. every pixel finite and non-negative;
- *   5. the half-space's exact albedo (--exact-albedo) against a Monte Carlo
- *      walk of the same medium written here, and the dipole's below it.
+ *   5. the half-space's exact albedo, for diffuse light and for a beam,
+ *      index-matched and behind a Fresnel boundary, against a Monte Carlo
+ *      walk of the same medium written here; the renderer's table of it
+ *      (jd_albedo_ratio) against the solution between its points.
  * Usage: test_reference ASSET.drc (the project's default asset). */
 #include <math.h>
 #include <stdio.h>
@@ -371,7 +373,8 @@ static void test_albedo(void)
     for (int e = 0; e < 3; e += 2)
         for (int k = 2; k < 4; k++) {
             double b[3];
-            CHECK(jd_halfspace_albedo_beam(alphas[k], etas[e], 3, b) == 0, "the beam's albedo computed");
+            double dif = 0;
+            CHECK(jd_halfspace_albedo_beam(alphas[k], etas[e], 3, b, &dif) == 0 && fabs(dif - jd_halfspace_albedo(alphas[k], etas[e])) < 1e-9, "the beam's albedo computed, its diffuse figure the same");
             for (int q = 1; q < 3; q++) {
                 double mc = walk_albedo(alphas[k], etas[e], 0.5 * q, 400000);
                 printf("eta %.1f, albedo %.2f, a beam at cosine %.1f: exact %.4f, Monte Carlo %.4f\n", etas[e], alphas[k],
@@ -380,6 +383,17 @@ static void test_albedo(void)
                       etas[e], alphas[k], b[q], mc);
             }
         }
+    /* The renderer's table (core/albedo_table.c) between its points. */
+    const double t_eta[] = {1.0, 1.13, 1.3, 1.5, 2.37}, t_alpha[] = {0.02, 0.3, 0.68, 0.9, 0.99, 0.9995};
+    double worst = 0;
+    for (int e = 0; e < 5; e++)
+        for (int k = 0; k < 6; k++) {
+            double A = (1 + jd_dipole_fdr(t_eta[e])) / (1 - jd_dipole_fdr(t_eta[e]));
+            double want = jd_halfspace_albedo(t_alpha[k], t_eta[e]) / jd_dipole_rd_total(t_alpha[k], A);
+            worst = fmax(worst, fabs(jd_albedo_ratio(t_alpha[k], t_eta[e]) / want - 1));
+        }
+    printf("the renderer's table of the exact albedo over the dipole's: largest error %.4f%%\n", 100 * worst);
+    CHECK(worst < 0.005, "the table within 0.5%% of the solution between its points (%.4f%%)", 100 * worst);
     CHECK(jd_halfspace_albedo(0, 1.5) == 0 && jd_halfspace_albedo(1, 1.5) == 1, "no scattering: nothing back; no absorption: all");
 }
 

@@ -16,6 +16,8 @@ typedef void (*any_fn)();
 int main()
 {
     static const any_fn all[] = {
+        FN(jd_albedo_ratio),
+        FN(jd_albedo_total),
         FN(jd_arena_alloc),
         FN(jd_arena_alloc_top),
         FN(jd_arena_free_bytes),
