@@ -19,7 +19,8 @@ int jd_cmd_reference(int argc, char **argv)
     o.out = "reference.png";
     int rc = jd_options_command(&o, JD_OPT_REFERENCE, "reference",
                                 "Renders the scene of jade render on the CPU with the Jensen et al. 2001 dipole\n"
-                                "BSSRDF (hierarchical, Jensen & Buhler 2002): the ground truth for jade metric.\n"
+                                "BSSRDF (hierarchical, Jensen & Buhler 2002), its albedo the transport equation's\n"
+                                "for the half-space and the light's angle: the ground truth for jade metric.\n"
                                 "The PNG is tone-mapped exactly as jade maps its own output.",
                                 argc, argv);
     if (rc >= 0) return rc;
