@@ -93,30 +93,23 @@ static int beam_albedo(double alpha, double eta, const double *mu, double *R, do
         }
         return 0;
     }
-    double *a = malloc(sizeof(double) * HS_POINTS * HS_POINTS), *k = malloc(sizeof(double) * HS_POINTS * HS_POINTS);
-    if (!a || !k) {
-        free(a);
-        free(k);
-        return -1;
-    }
+    double *a = malloc(sizeof(double) * HS_POINTS * HS_POINTS);
+    if (!a) return -1;
     for (int i = 0; i < HS_POINTS; i++) f[i] = jd_fresnel_dielectric(mu[i], eta, 1.0);
+#define K(i, j) (0.5 * alpha * h[i] * h[j] * mu[i] * w / (mu[i] + mu[j]))
+    /* (I - K F) transposed: row j, column i. */
     for (int i = 0; i < HS_POINTS; i++)
-        for (int j = 0; j < HS_POINTS; j++) {
-            double kij = 0.5 * alpha * h[i] * h[j] * mu[i] * w / (mu[i] + mu[j]);
-            k[(size_t)i * HS_POINTS + j] = kij;
-            /* (I - K F) transposed: row j, column i. */
-            a[(size_t)j * HS_POINTS + i] = (i == j ? 1.0 : 0.0) - kij * f[j];
-        }
+        for (int j = 0; j < HS_POINTS; j++) a[(size_t)j * HS_POINTS + i] = (i == j ? 1.0 : 0.0) - K(i, j) * f[j];
     double y[HS_POINTS];
     for (int i = 0; i < HS_POINTS; i++) y[i] = 1.0 - f[i];
     solve(a, y, HS_POINTS);
     for (int j = 0; j < HS_POINTS; j++) {
         double r = 0;
-        for (int i = 0; i < HS_POINTS; i++) r += y[i] * k[(size_t)i * HS_POINTS + j];
+        for (int i = 0; i < HS_POINTS; i++) r += y[i] * K(i, j);
         R[j] = r;
     }
+#undef K
     free(a);
-    free(k);
     return 0;
 }
 
@@ -125,7 +118,9 @@ static void points(double *mu)
     for (int i = 0; i < HS_POINTS; i++) mu[i] = (i + 0.5) / HS_POINTS;
 }
 
-/* Of diffuse light that entered, the part that comes back, from R and F. */
+/* Of diffuse light that entered, the part that comes back, from R and F.
+ * Index-matched (F = 0) this is Chandrasekhar's 1 - 2 sqrt(1 - alpha) times
+ * the first moment of H, exactly, on the same points. */
 static double diffuse_albedo(double eta, const double *mu, const double *R, const double *f)
 {
     const double w = 1.0 / HS_POINTS;
@@ -163,12 +158,7 @@ int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out, doubl
         return 0;
     }
     if (beam_albedo(alpha, eta, mu, R, f)) return -1;
-    if (diffuse) {
-        /* At eta 1 Chandrasekhar's closed form, as jd_halfspace_albedo. */
-        double m1 = 0, h0 = sqrt(1.0 - alpha);
-        for (int i = 0; i < HS_POINTS && fabs(eta - 1.0) < 1e-9; i++) m1 += (1.0 - R[i]) / h0 * mu[i] / HS_POINTS;
-        *diffuse = fabs(eta - 1.0) < 1e-9 ? 1.0 - 2.0 * h0 * m1 : diffuse_albedo(eta, mu, R, f);
-    }
+    if (diffuse) *diffuse = diffuse_albedo(eta, mu, R, f);
     for (int k = 0; k < n; k++) {
         /* The outside's cosine to the inside's (Snell), then linear between
          * the points, held at the ends. */

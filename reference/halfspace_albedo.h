@@ -15,7 +15,7 @@ extern "C" {
  * it, as it is not in the dipole's Rd_total). Chandrasekhar's H-function on
  * 400 points (a few to 60 ms); at eta other than 1 the boundary added by
  * solving a 400 x 400 system (another 20 ms). Negative when out of memory
- * (eta other than 1 takes 2.6 MB for the system). */
+ * (eta other than 1 takes 1.3 MB for the system). */
 double jd_halfspace_albedo(double alpha, double eta);
 
 /* The same for a beam: out[k], of the light of a beam at the outside's
