@@ -68,10 +68,11 @@ int jd_cmd_reference(int argc, char **argv)
     printf("wrote %s%s%s%s%s (%dx%d, reference, %s, mesh %s: %u triangles)\n", o.out, o.pfm ? ", " : "",
            o.pfm ? o.pfm : "", o.mask_out ? ", " : "", o.mask_out ? o.mask_out : "", o.width, o.height, o.material,
            s.mesh_path, s.mesh.num_indices / 3);
-    printf("%u samples (%.3f mm apart over %.0f mm^2), window %.2f mm, %d threads; irradiance %.0f ms, octree "
-           "%.0f ms, pixels %.0f ms (%ld on the object, %.0f kernel evaluations each)\n",
-           st.samples, st.spacing_mm, st.surface_mm2, st.window_mm, st.threads, st.irradiance_ms, st.tree_ms,
-           st.pixels_ms, st.object_pixels, st.evals_per_pixel);
+    printf("%u samples (%.3f mm apart over %.0f mm^2; %u carry light across a thin part), window %.2f mm, %d "
+           "threads; irradiance %.0f ms, octree %.0f ms, pixels %.0f ms (%ld on the object, %.0f kernel evaluations "
+           "each)\n",
+           st.samples, st.spacing_mm, st.surface_mm2, st.carried, st.window_mm, st.threads, st.irradiance_ms,
+           st.tree_ms, st.pixels_ms, st.object_pixels, st.evals_per_pixel);
     rc = 0;
 done:
     jd_ref_destroy(ref);

@@ -1,4 +1,5 @@
 #include "ref_diffusion.h"
+#include "ref_slab.h"
 
 #include <float.h>
 #include <math.h>
@@ -20,6 +21,21 @@ static inline void rd_scaled(const jd_diffusion *d, float r2, float scale, float
         out[c] = scale * d->k[c] *
                  (d->zr[c] * (1.0f + s * dr) * expf(-s * dr) / (dr2 * dr) +
                   d->zv[c] * (1.0f + s * dv) * expf(-s * dv) / (dv2 * dv));
+    }
+}
+
+/* The light carried across a part `thick` mm thick, at squared distance
+ * r2 from where it leaves: Rd's form with the real source at the height
+ * ref_slab.h gives and its image 2 z_b above the face, so the profile is as
+ * wide as the part is thick. Whole (no window): it is smooth where it
+ * matters. */
+static inline void kernel_carried(const jd_diffusion *d, float r2, float thick, float out[3])
+{
+    for (int c = 0; c < 3; c++) {
+        float h = (float)jd_slab_carried_height(thick, d->zr[c]), hv = h + d->zb2[c], s = d->str[c];
+        float dr2 = r2 + h * h, dv2 = r2 + hv * hv, dr = sqrtf(dr2), dv = sqrtf(dv2);
+        out[c] = d->k[c] * (h * (1.0f + s * dr) * expf(-s * dr) / (dr2 * dr) +
+                            hv * (1.0f + s * dv) * expf(-s * dv) / (dv2 * dv));
     }
 }
 
@@ -99,7 +115,7 @@ static int grow(jd_diffusion *d)
 static void summarise(jd_diffusion *d, uint32_t ni, uint32_t first, uint32_t count)
 {
     jd_octree_node *n = &d->nodes[ni];
-    double c[3] = {0, 0, 0}, ca[3] = {0, 0, 0}, w = 0, area = 0, ea[3] = {0, 0, 0};
+    double c[3] = {0, 0, 0}, ca[3] = {0, 0, 0}, w = 0, area = 0, ea[3] = {0, 0, 0}, thick = 0;
     for (int k = 0; k < 3; k++) { n->lo[k] = FLT_MAX; n->hi[k] = -FLT_MAX; }
     for (uint32_t i = first; i < first + count; i++) {
         const jd_ref_point *p = &d->pts[i];
@@ -112,6 +128,7 @@ static void summarise(jd_diffusion *d, uint32_t ni, uint32_t first, uint32_t cou
             ea[k] += p->ea[k];
         }
         w += pw;
+        thick += pw * p->thick;
         area += p->area;
     }
     for (int k = 0; k < 3; k++) {
@@ -119,6 +136,7 @@ static void summarise(jd_diffusion *d, uint32_t ni, uint32_t first, uint32_t cou
         n->ea[k] = (float)ea[k];
     }
     n->area = (float)area;
+    n->thick = (float)(w > 0 ? thick / w : 0.0);
 }
 
 /* Recursive octant split; points are reordered so every node owns a range. */
@@ -171,9 +189,10 @@ static int build_node(jd_diffusion *d, uint32_t ni, uint32_t first, uint32_t cou
 }
 
 jd_result jd_diffusion_build(jd_diffusion *d, jd_ref_point *pts, uint32_t n, const jd_dipole *dp, float r0_mm,
-                             float error, jd_error *err)
+                             float error, int carried, jd_error *err)
 {
     memset(d, 0, sizeof *d);
+    d->carried = carried;
     d->pts = pts;
     d->num_pts = n;
     d->r0 = r0_mm;
@@ -183,6 +202,7 @@ jd_result jd_diffusion_build(jd_diffusion *d, jd_ref_point *pts, uint32_t n, con
         d->zv[c] = (float)dp->zv[c];
         d->zr2[c] = d->zr[c] * d->zr[c];
         d->zv2[c] = d->zv[c] * d->zv[c];
+        d->zb2[c] = d->zv[c] - d->zr[c];
         d->str[c] = (float)dp->sigma_tr[c];
         d->k[c] = (float)(dp->alpha[c] * dp->ratio[c] / (4.0 * M_PI));
         /* Rd w over the plane, r in [0, r0]: Simpson on a fine grid (Rd is
@@ -237,7 +257,8 @@ uint32_t jd_diffusion_sum(const jd_diffusion *d, const float x[3], double out[3]
          * lies wholly outside the window. */
         if (box2 > r02 && n->area < d->error * r2 && (n->leaf ? n->count > 1 : 1)) {
             float k[3];
-            kernel(d, r2, k);
+            if (d->carried) kernel_carried(d, r2, n->thick, k);
+            else kernel(d, r2, k);
             for (int c = 0; c < 3; c++) acc[c] += (double)k[c] * n->ea[c];
             evals++;
             continue;
@@ -247,6 +268,11 @@ uint32_t jd_diffusion_sum(const jd_diffusion *d, const float x[3], double out[3]
                 const jd_ref_point *p = &d->pts[i];
                 float ex = p->p[0] - x[0], ey = p->p[1] - x[1], ez = p->p[2] - x[2];
                 float e2 = ex * ex + ey * ey + ez * ez, k[3];
+                if (d->carried) {
+                    kernel_carried(d, e2, p->thick, k);
+                    for (int c = 0; c < 3; c++) acc[c] += (double)k[c] * p->ea[c];
+                    continue;
+                }
                 kernel(d, e2, k);
                 for (int c = 0; c < 3; c++) acc[c] += (double)k[c] * p->ea[c];
                 if (e2 < r02) {
@@ -278,7 +304,7 @@ uint32_t jd_diffusion_exitance(const jd_diffusion *d, const float x[3], const fl
      * the samples fell). With no sample inside, the light at x. */
     for (int c = 0; c < 3; c++) {
         double e = den[c] > 0 ? num[c] / den[c] : e_local[c];
-        out[c] = (float)(s[c] + d->local[c] * e);
+        out[c] = (float)(d->carried ? s[c] : s[c] + d->local[c] * e);
     }
     return evals;
 }

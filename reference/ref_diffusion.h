@@ -6,6 +6,8 @@
  *
  *   Mo(xo) = sum_i Rd(|x_i - xo|) E_i A_i
  *
+ * (plus, where the object is thin, the light carried across it: ref_slab.h)
+ *
  * Near xo the dipole peaks with a width of one mean free path (0.3-4 mm for
  * the measured materials), finer than any affordable sample spacing, so the
  * kernel is split with a smooth window w(r) = (1 - r^2/r0^2)^2 (r < r0):
@@ -24,6 +26,7 @@ typedef struct jd_ref_point {
     float p[3];   /* mm */
     float ea[3];  /* irradiance times area, per channel */
     float area;   /* mm^2 */
+    float thick;  /* carried light (ref_slab.h): the part's thickness, mm; 0 for a sample */
 } jd_ref_point;
 
 typedef struct jd_octree_node {
@@ -31,6 +34,7 @@ typedef struct jd_octree_node {
     float c[3];          /* power-weighted centre */
     float ea[3];
     float area;
+    float thick;         /* power-weighted mean of the points' (a tree of carried light) */
     uint32_t first;      /* leaf: first point; inner: first child */
     uint32_t count;      /* leaf: points; inner: children */
     uint32_t leaf;
@@ -44,6 +48,8 @@ typedef struct jd_diffusion {
     float r0;                /* window radius, mm */
     float error;             /* largest node solid angle summed as one */
     float zr2[3], zv2[3], zr[3], zv[3], str[3], k[3]; /* Rd(r) constants per channel */
+    float zb2[3];            /* twice the extrapolated boundary's distance, z_v - z_r */
+    int carried;             /* the points are carried light (ref_slab.h): summed whole with their own profile */
     double local[3];         /* integral of Rd w over the plane within r0 */
     /* Near the samples, Rd (1 - w) averaged over a disk of one sample's
      * area: what a sample stands for. The sum stays an unbiased estimate of
@@ -54,9 +60,10 @@ typedef struct jd_diffusion {
 } jd_diffusion;
 
 /* pts stays owned by the caller and is reordered (all of the same area).
- * error: e.g. 0.01. */
+ * error: e.g. 0.01. carried: every point is light carried across a thin
+ * part (thick > 0), none a sample of the surface. */
 jd_result jd_diffusion_build(jd_diffusion *d, jd_ref_point *pts, uint32_t n, const jd_dipole *dp, float r0_mm,
-                             float error, jd_error *err);
+                             float error, int carried, jd_error *err);
 void jd_diffusion_free(jd_diffusion *d);
 /* Mo at x (mm) where the irradiance is e_local; returns the kernel
  * evaluations it took. */

@@ -16,6 +16,7 @@
 #include "ref_bvh.h"
 #include "ref_diffusion.h"
 #include "ref_samples.h"
+#include "ref_slab.h"
 #include "vmath.h"
 
 enum { JD_BEAM_STEPS = 64 }; /* the beam's albedo table: its cosine in 64 steps */
@@ -33,6 +34,7 @@ struct jd_ref {
      * light entering there), else NULL. */
     float *pt_alb;
     jd_diffusion diff;
+    jd_diffusion carry;  /* light carried across thin parts (ref_slab.h); no nodes where none is */
     jd_dipole dp;
     /* The light's beam by its cosine (0..1 in JD_BEAM_STEPS): the
      * half-space's albedo for that beam over its albedo for diffuse light,
@@ -224,7 +226,37 @@ static void irradiance(const jd_ref *r, const float p[3], const float n[3], cons
 
 
 
-typedef struct irr_ctx { jd_ref *r; } irr_ctx;
+typedef struct irr_ctx { jd_ref *r; uint32_t n; } irr_ctx;
+
+/* Light leaving the far side of a thin part (ref_slab.h): the ray from the
+ * sample along its inward normal to where it leaves the object, d mm; the
+ * sample and a carried point where the ray leaves share its power by
+ * jd_slab_weights (a slab's R(d) and T(d)). Where the ray leaves nothing (an
+ * open mesh, a sheet) or meets a surface facing it (normals that disagree),
+ * the sample stays a half-space's. */
+static void carry_across(const jd_ref *r, const float pw[3], const float n[3], jd_ref_point *p, jd_ref_point *q)
+{
+    memset(q, 0, sizeof *q);
+    q->area = p->area;
+    if (p->ea[0] + p->ea[1] + p->ea[2] <= 0) return; /* no light to carry */
+    float dir[3] = {-n[0], -n[1], -n[2]}, y[3], yn[3], yg[3];
+    jd_hit hit;
+    if (!jd_bvh_intersect(&r->bvh, pw, dir, r->eps, 1e30f, &hit)) return;
+    surface_at(r, hit.tri, hit.u, hit.v, y, yn, yg);
+    if (dot3(yg, dir) <= 0) return;
+    double d = (double)hit.t * r->mm_per_world, carried = 0;
+    for (int c = 0; c < 3; c++) {
+        double ws, wc;
+        jd_slab_weights(&r->dp, c, d, &ws, &wc);
+        q->ea[c] = (float)(p->ea[c] * wc);
+        p->ea[c] = (float)(p->ea[c] * ws);
+        q->p[c] = y[c] * r->mm_per_world;
+        carried += q->ea[c];
+    }
+    /* Past a few diffusion lengths nothing comes through: leave it out. */
+    if (carried > 1e-4 * (p->ea[0] + p->ea[1] + p->ea[2])) q->thick = (float)d;
+    else memset(q->ea, 0, sizeof q->ea);
+}
 
 static void irr_chunk(void *ctx, long b, long e, uint64_t *evals)
 {
@@ -239,6 +271,7 @@ static void irr_chunk(void *ctx, long b, long e, uint64_t *evals)
             p->ea[k] = ei[k] * p->area * (r->pt_alb ? r->pt_alb[3 * i + k] : 1.0f);
             p->p[k] = pw[k] * r->mm_per_world; /* the octree works in millimetres */
         }
+        if (!r->d.half_space) carry_across(r, pw, n, p, &r->pts[((irr_ctx *)ctx)->n + i]);
     }
 }
 
@@ -328,7 +361,8 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     jd_surface_point *sp = NULL;
     res = jd_surface_samples(r->pos, r->tri, r->num_tris, n, desc->seed, &sp, &n, err);
     if (res) { jd_ref_destroy(r); return res; }
-    r->pts = malloc(sizeof *r->pts * (n ? n : 1));
+    /* Room for each sample's light carried across a thin part. */
+    r->pts = malloc(sizeof *r->pts * (n ? n : 1) * (desc->half_space ? 1 : 2));
     r->pt_n = malloc(sizeof(float) * 6 * (n ? n : 1));
     if (!r->pts || !r->pt_n) {
         free(sp);
@@ -348,6 +382,7 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
         memcpy(r->pt_n + 6 * k, nn, sizeof nn);
         memcpy(r->pt_n + 6 * k + 3, ng, sizeof ng);
         r->pts[k].area = (float)area_mm2;
+        r->pts[k].thick = 0; /* a sample of the surface */
         if (r->pt_alb) albedo_factor(r, sp[k].tri, sp[k].u, sp[k].v, r->pt_alb + 3 * (size_t)k);
     }
     free(sp);
@@ -357,13 +392,26 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     r->st.setup_ms = jd_clock_ms() - t0;
 
     double t1 = jd_clock_ms();
-    irr_ctx ic = {r};
+    irr_ctx ic = {r, n};
     par_run(r->st.threads, n, 2048, irr_chunk, &ic, "irradiance", desc->progress);
+    if (!desc->half_space) { /* the carried points that carry light, packed behind the samples */
+        uint32_t all = n;
+        for (uint32_t i = n; i < 2 * n; i++)
+            if (r->pts[i].thick > 0) r->pts[all++] = r->pts[i];
+        r->st.carried = all - n;
+    }
     r->st.irradiance_ms = jd_clock_ms() - t1;
 
     double t2 = jd_clock_ms();
-    res = jd_diffusion_build(&r->diff, r->pts, n, &r->dp, (float)r->st.window_mm,
-                             desc->error > 0 ? desc->error : 0.01f, err);
+    float error = desc->error > 0 ? desc->error : 0.01f;
+    res = jd_diffusion_build(&r->diff, r->pts, n, &r->dp, (float)r->st.window_mm, error, 0, err);
+    /* The carried light's profile is as wide as the part is thick and has
+     * no peak: a node may stand for its points at 4 times the bound (bunny,
+     * 256x256, skin1 back-lit: 0.0003 RMSE from the same bound, pixels
+     * 6.1 s -> 3.6 s). */
+    if (!res && r->st.carried)
+        res = jd_diffusion_build(&r->carry, r->pts + n, r->st.carried, &r->dp, (float)r->st.window_mm, 4.0f * error, 1,
+                                 err);
     if (res) { jd_ref_destroy(r); return res; }
     r->st.tree_ms = jd_clock_ms() - t2;
     if (stats) *stats = r->st;
@@ -371,10 +419,24 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     return JD_OK;
 }
 
+/* Mo at x (mm) where the irradiance is e: the samples' light and what
+ * thin parts carried there. */
+static uint32_t exitance(const jd_ref *r, const float x[3], const float e[3], float out[3])
+{
+    uint32_t evals = jd_diffusion_exitance(&r->diff, x, e, out);
+    if (r->carry.num_nodes) {
+        float t[3];
+        evals += jd_diffusion_exitance(&r->carry, x, e, t);
+        for (int c = 0; c < 3; c++) out[c] += t[c];
+    }
+    return evals;
+}
+
 void jd_ref_destroy(jd_ref *r)
 {
     if (!r) return;
     jd_diffusion_free(&r->diff);
+    jd_diffusion_free(&r->carry);
     jd_bvh_free(&r->bvh);
     free(r->pos); free(r->nrm); free(r->tri); free(r->pts); free(r->pt_n); free(r->pt_alb);
     free(r);
@@ -385,7 +447,7 @@ void jd_ref_exitance(const jd_ref *r, const float p[3], const float n[3], float 
     float e[3], ng[3] = {n[0], n[1], n[2]}, x[3];
     irradiance(r, p, n, ng, e);
     for (int k = 0; k < 3; k++) x[k] = p[k] * r->mm_per_world;
-    jd_diffusion_exitance(&r->diff, x, e, out);
+    exitance(r, x, e, out);
 }
 
 /* ---- the picture -------------------------------------------------------- */
@@ -426,7 +488,7 @@ static int pixel_ray(px_ctx *c, float fx, float fy, float o[3], uint64_t *evals)
     surface_at(r, hit.tri, hit.u, hit.v, p, n, ng);
     irradiance(r, p, n, ng, ev);
     for (int k = 0; k < 3; k++) xm[k] = p[k] * r->mm_per_world;
-    *evals += jd_diffusion_exitance(&r->diff, xm, ev, mo);
+    *evals += exitance(r, xm, ev, mo);
     if (r->d.mesh->colors) {
         float fo[3];
         albedo_factor(r, hit.tri, hit.u, hit.v, fo);
