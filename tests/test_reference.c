@@ -10,9 +10,10 @@
  *   4. every pixel finite and non-negative;
  *   5. a thin slab (two faces d mm apart) lit on one face: the lit face
  *      gives out R(d) and the far face T(d) of Donner & Jensen's multipole
- *      (its profiles integrated here, term by term), within 4% (the two
- *      faces 40 mm apart already sum 1.4% under the half-space's total
- *      where one face alone sums 0.4% under it: not yet explained);
+ *      (its profiles integrated here, term by term), within 4% (a point's
+ *      exitance carries the sample placement's noise: the same two faces
+ *      40 mm apart, where nothing crosses, come out 0.02-1.3% under the
+ *      half-space's total at the centre over four placements);
  *   6. the half-space's exact albedo, for diffuse light and for a beam,
  *      index-matched and behind a Fresnel boundary, against a Monte Carlo
  *      walk of the same medium written here; the renderer's table of it
