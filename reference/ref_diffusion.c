@@ -8,20 +8,23 @@
 
 enum { LEAF_POINTS = 8, MAX_DEPTH = 40, TABLE_N = 2048, DISK_RINGS = 24, DISK_ANGLES = 48 };
 
+/* The flux through a plane of a source at height h below it and its
+ * negative image hv above (squares given), at squared distance r2 along the
+ * plane, times k: Rd's form (Jensen et al. 2001). */
+static inline float dipole_pair(float k, float s, float h, float h2, float hv, float hv2, float r2)
+{
+    float dr2 = r2 + h2, dv2 = r2 + hv2, dr = sqrtf(dr2), dv = sqrtf(dv2);
+    return k * (h * (1.0f + s * dr) * expf(-s * dr) / (dr2 * dr) + hv * (1.0f + s * dv) * expf(-s * dv) / (dv2 * dv));
+}
+
 /* scale * Rd(r), three channels, at squared distance r2: jd_dipole_rd
  * (material.c) again, in floats with its constants squared ahead, because
  * this is the inner loop: calling the double version makes the 512x512
  * bunny take 20 s instead of 11. */
 static inline void rd_scaled(const jd_diffusion *d, float r2, float scale, float out[3])
 {
-    for (int c = 0; c < 3; c++) {
-        float dr2 = r2 + d->zr2[c], dv2 = r2 + d->zv2[c];
-        float dr = sqrtf(dr2), dv = sqrtf(dv2);
-        float s = d->str[c];
-        out[c] = scale * d->k[c] *
-                 (d->zr[c] * (1.0f + s * dr) * expf(-s * dr) / (dr2 * dr) +
-                  d->zv[c] * (1.0f + s * dv) * expf(-s * dv) / (dv2 * dv));
-    }
+    for (int c = 0; c < 3; c++)
+        out[c] = scale * dipole_pair(d->k[c], d->str[c], d->zr[c], d->zr2[c], d->zv[c], d->zv2[c], r2);
 }
 
 /* The light carried across a part `thick` mm thick, at squared distance
@@ -32,10 +35,8 @@ static inline void rd_scaled(const jd_diffusion *d, float r2, float scale, float
 static inline void kernel_carried(const jd_diffusion *d, float r2, float thick, float out[3])
 {
     for (int c = 0; c < 3; c++) {
-        float h = (float)jd_slab_carried_height(thick, d->zr[c]), hv = h + d->zb2[c], s = d->str[c];
-        float dr2 = r2 + h * h, dv2 = r2 + hv * hv, dr = sqrtf(dr2), dv = sqrtf(dv2);
-        out[c] = d->k[c] * (h * (1.0f + s * dr) * expf(-s * dr) / (dr2 * dr) +
-                            hv * (1.0f + s * dv) * expf(-s * dv) / (dv2 * dv));
+        float h = (float)jd_slab_carried_height(thick, d->zr[c]), hv = h + d->zb2[c];
+        out[c] = dipole_pair(d->k[c], d->str[c], h, h * h, hv, hv * hv, r2);
     }
 }
 
@@ -205,6 +206,7 @@ jd_result jd_diffusion_build(jd_diffusion *d, jd_ref_point *pts, uint32_t n, con
         d->zb2[c] = d->zv[c] - d->zr[c];
         d->str[c] = (float)dp->sigma_tr[c];
         d->k[c] = (float)(dp->alpha[c] * dp->ratio[c] / (4.0 * M_PI));
+        if (carried) continue; /* summed whole: no window, no table */
         /* Rd w over the plane, r in [0, r0]: Simpson on a fine grid (Rd is
          * smooth at the scale of z_r, and the grid is far finer). */
         const int steps = 4096;
@@ -217,8 +219,10 @@ jd_result jd_diffusion_build(jd_diffusion *d, jd_ref_point *pts, uint32_t n, con
         d->local[c] = r0_mm > 0 ? sum * h / 3.0 : 0.0;
     }
     if (!n) return jd_fail(err, JD_ERR_ARG, "no irradiance samples");
-    jd_result res = build_table(d, sqrtf(pts[0].area / (float)M_PI), err);
-    if (res) return res;
+    if (!carried) {
+        jd_result res = build_table(d, sqrtf(pts[0].area / (float)M_PI), err);
+        if (res) return res;
+    }
     if (!grow(d)) { jd_diffusion_free(d); return jd_fail(err, JD_ERR_BUDGET, "out of memory for the octree"); }
     d->num_nodes = 1;
     if (!build_node(d, 0, 0, n, 0)) {
