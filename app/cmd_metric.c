@@ -7,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <stb_image.h>
 
 #include "commands.h"
 #include "display_curve.h"
@@ -31,10 +30,10 @@ static float *read_image(const char *path, int *w, int *h, char *why, size_t cap
     free(buf);
     if (!px) return NULL;
     float *out = malloc((size_t)*w * *h * 3 * sizeof(float));
-    if (!out) { stbi_image_free(px); snprintf(why, cap, "out of memory"); return NULL; }
+    if (!out) { free(px); snprintf(why, cap, "out of memory"); return NULL; }
     for (long i = 0; i < (long)*w * *h; i++)
         for (int k = 0; k < 3; k++) out[3 * i + k] = jd_display_to_linear(px[4 * i + k]);
-    stbi_image_free(px); /* only the linear copy is compared */
+    free(px); /* only the linear copy is compared */
     return out;
 }
 
@@ -98,7 +97,7 @@ static int metric(const char *paths[2], const char *mask_path)
     rc = fflush(stdout) == 0 && !ferror(stdout) ? 0 : 1;
 done:
     for (int k = 0; k < 2; k++) free(img[k]);
-    stbi_image_free(m);
+    free(m);
     free(mask);
     return rc;
 }

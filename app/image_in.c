@@ -4,13 +4,14 @@
 #include <errno.h>
 #include <math.h>
 #include <fcntl.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <stb_image.h>
+#include "picture_decode.h"
 
 /* Opened without blocking (a FIFO with no writer would hang the open), then
  * looked at. */
@@ -70,51 +71,18 @@ unsigned char *jd_input_read(const char *path, size_t *len, char *why, size_t ca
 unsigned char *jd_image_decode(const unsigned char *buf, size_t n, int *w, int *h, int channels, char *why,
                                size_t cap)
 {
-    /* PNG only: stb_image's other decoders are not safe on hostile input
-     * (fuzzing found a heap overflow in its 16-bit PNM path), and every
-     * picture jade writes or compares is a PNG or a PFM. */
+    /* PNG only: every picture jade writes or compares is a PNG or a PFM. */
     static const unsigned char png_magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    int c = 0;
+    static const jd_picture_limits lim = {JD_IMAGE_MAX_SIDE, (uint64_t)JD_IMAGE_MAX_SIDE * JD_IMAGE_MAX_SIDE};
     if (n < 8 || n > JD_IMAGE_MAX_BYTES || memcmp(buf, png_magic, 8) != 0) {
         snprintf(why, cap, "not a PNG (jade reads PNG and PFM pictures)");
         return NULL;
     }
-    /* The size the header declares, read here: stb_image would refuse a
-     * huge one with a vaguer "unknown image type". */
-    if (n < 24 || memcmp(buf + 12, "IHDR", 4) != 0) {
-        snprintf(why, cap, "a PNG without its IHDR header");
-        return NULL;
-    }
-    unsigned long dw = (unsigned long)buf[16] << 24 | (unsigned long)buf[17] << 16 | buf[18] << 8 | buf[19];
-    unsigned long dh = (unsigned long)buf[20] << 24 | (unsigned long)buf[21] << 16 | buf[22] << 8 | buf[23];
-    if (dw == 0 || dh == 0 || dw > JD_IMAGE_MAX_SIDE || dh > JD_IMAGE_MAX_SIDE) {
-        snprintf(why, cap, "declares %lux%lu pixels, over the limit of %dx%d", dw, dh, JD_IMAGE_MAX_SIDE,
-                 JD_IMAGE_MAX_SIDE);
-        return NULL;
-    }
-    /* Every chunk must lie inside the file: stb_image grows its buffer to
-     * what a chunk declares before reading it (2 GiB for a 79-byte file). */
-    for (size_t at = 8; at < n;) {
-        if (n - at < 12) { snprintf(why, cap, "PNG truncated at byte %zu", at); return NULL; }
-        unsigned long len = (unsigned long)buf[at] << 24 | (unsigned long)buf[at + 1] << 16 | buf[at + 2] << 8 | buf[at + 3];
-        if (len > n - at - 12) {
-            snprintf(why, cap, "PNG chunk at byte %zu declares %lu bytes, past the end of the file", at, len);
-            return NULL;
-        }
-        if (!memcmp(buf + at + 4, "IEND", 4)) break;
-        at += 12 + len;
-    }
-    if (!stbi_info_from_memory(buf, (int)n, w, h, &c)) {
-        snprintf(why, cap, "not a PNG stb_image can read: %s", stbi_failure_reason());
-        return NULL;
-    }
-    if (*w <= 0 || *h <= 0 || *w > JD_IMAGE_MAX_SIDE || *h > JD_IMAGE_MAX_SIDE) {
-        snprintf(why, cap, "declares %dx%d pixels, over the limit of %dx%d", *w, *h, JD_IMAGE_MAX_SIDE,
-                 JD_IMAGE_MAX_SIDE);
-        return NULL;
-    }
-    unsigned char *px = stbi_load_from_memory(buf, (int)n, w, h, &c, channels);
-    if (!px) snprintf(why, cap, "cannot decode it: %s", stbi_failure_reason());
+    uint8_t *px = NULL;
+    uint32_t pw = 0, ph = 0;
+    if (jd_png_decode(buf, n, channels, &lim, &px, &pw, &ph, why, cap) != 0) return NULL;
+    *w = (int)pw;
+    *h = (int)ph;
     return px;
 }
 

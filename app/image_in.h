@@ -15,8 +15,8 @@ int jd_input_regular(const char *path, char *why, size_t cap);
  * or NULL and a reason. */
 unsigned char *jd_input_read(const char *path, size_t *n, char *why, size_t cap);
 
-/* stb_image's pixels (free with stbi_image_free) with `channels` per pixel,
- * or NULL and a reason. */
+/* A PNG's pixels (free() them) with `channels` (1, 3 or 4) per pixel, or
+ * NULL and a reason. */
 unsigned char *jd_image_load(const char *path, int *w, int *h, int channels, char *why, size_t cap);
 unsigned char *jd_image_decode(const unsigned char *buf, size_t n, int *w, int *h, int channels, char *why,
                                size_t cap);

@@ -1,9 +1,9 @@
 /* none | single | dual | full side by side with labels: what a person compares;
  * with --sheet-reference, the reference picture first. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
-#include <stb_image.h>
 
 #include "commands.h"
 #include "font5x7.h"
@@ -21,7 +21,7 @@ int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
         if (!ref || rw != w || rh != h) {
             fprintf(stderr, "jade render: --sheet-reference: %s: %s\n", o->sheet_ref,
                     ref ? "not the size of the sheet's pictures (--size)" : why);
-            stbi_image_free(ref);
+            free(ref);
             return 1;
         }
     }
@@ -29,7 +29,7 @@ int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
     const int sw = panels * w, sh = h + band;
     jd_error err = {0};
     uint8_t *sheet = jd_arena_alloc(&s->arena, (size_t)sw * sh * 4, 16, "the sheet image", &err);
-    if (!sheet) { fprintf(stderr, "jade render: %s\n", err.msg); stbi_image_free(ref); return 1; }
+    if (!sheet) { fprintf(stderr, "jade render: %s\n", err.msg); free(ref); return 1; }
     for (size_t i = 0; i < (size_t)sw * sh; i++) {
         sheet[4 * i] = sheet[4 * i + 1] = sheet[4 * i + 2] = 24;
         sheet[4 * i + 3] = 255;
@@ -38,7 +38,7 @@ int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
     const uint8_t white[3] = {235, 235, 235};
     if (ref) {
         for (int y = 0; y < h; y++) memcpy(sheet + 4 * ((size_t)(y + band) * sw), ref + 4 * (size_t)y * w, 4 * (size_t)w);
-        stbi_image_free(ref);
+        free(ref);
         char text[96];
         snprintf(text, sizeof text, "REFERENCE (DIPOLE) - %s", o->material);
         int scale = (int)strlen(text) * 12 + 16 <= w ? 2 : 1;

@@ -55,13 +55,15 @@ if ! ready arm64; then
 fi
 # (Made again when an older run's sysroot lacks a package added since.)
 if [ ! -f "$sysroot/usr/lib/aarch64-linux-gnu/pkgconfig/draco.pc" ] ||
-   [ ! -f "$sysroot/usr/lib/aarch64-linux-gnu/pkgconfig/libcjson.pc" ]; then
+   [ ! -f "$sysroot/usr/lib/aarch64-linux-gnu/pkgconfig/libcjson.pc" ] ||
+   [ ! -f "$sysroot/usr/lib/aarch64-linux-gnu/pkgconfig/libjpeg.pc" ]; then
     mkdir -p "$sysroot.debs"
     # shellcheck disable=SC2046
     if ! err=$(cd "$sysroot.debs" && apt-get download $(for p in libc6 libc6-dev linux-libc-dev libgcc-s1 libgcc-12-dev \
         libstdc++6 libstdc++-12-dev libdraco7 libdraco-dev libegl1 libegl-dev libglvnd0 libgles2 libgles1 \
         libgles-dev libgl-dev libgl1 libglx0 libglx-dev libopengl0 libx11-dev libx11-6 libxcb1 libxau6 \
-        libxdmcp6 libbsd0 libmd0 libstb0 libstb-dev libcjson1 libcjson-dev; do echo "$p:arm64"; done) x11proto-dev 2>&1 >/dev/null); then
+        libxdmcp6 libbsd0 libmd0 libstb0 libstb-dev libcjson1 libcjson-dev libpng16-16 libpng-dev \
+        libjpeg62-turbo libjpeg62-turbo-dev zlib1g zlib1g-dev; do echo "$p:arm64"; done) x11proto-dev 2>&1 >/dev/null); then
         echo "skipped: arm64 sysroot build (packages could not be downloaded: $(echo "$err" | grep '^E:' | tail -1))"
         rm -rf "$sysroot.debs"
         exit 0

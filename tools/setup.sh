@@ -3,7 +3,7 @@
 # As root it runs apt-get; otherwise it prints the exact command and stops.
 #
 # A package source that fails is reported as such, by name. What jade cannot
-# build without (compiler, EGL/GLES, Draco, stb) stops the run; the rest
+# build without (compiler, EGL/GLES, Draco, libpng, libjpeg-turbo, stb) stops the run; the rest
 # (the X11 and DRM/KMS platforms, meshoptimizer's triangle order, glTF through cJSON, the GLSL
 # validator, Xvfb, Python for the JSON checks, clang for the fuzz targets,
 # Mesa's build tools for the device compilers) is left out with the reason,
@@ -14,7 +14,7 @@ set -eu
 here=$(dirname "$0")
 . "$here/apt-source.sh"
 required="build-essential cmake pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libdraco-dev draco
-          libstb-dev"
+          libpng-dev libjpeg62-turbo-dev libstb-dev"
 optional="libgbm-dev libdrm-dev libinput-dev libudev-dev libx11-dev libmeshoptimizer-dev libcjson-dev glslang-tools xvfb python3 clang libclang-rt-14-dev
           dpkg-dev meson ninja-build bison flex python3-mako libexpat1-dev zlib1g-dev"
 # shellcheck disable=SC2086

@@ -1,17 +1,12 @@
 /* libFuzzer: the picture readers of metric, --mask and --sheet-reference
- * (stb_image behind the pixel cap, and jade's PFM reader), chosen by
+ * (libpng behind the pixel cap, and jade's PFM reader), chosen by
  * content as jade metric chooses. */
-#pragma GCC diagnostic ignored "-Wunused-function"
 #include <ctype.h>
 #include <stdint.h>
 #include <stdlib.h>
 
-/* stb_image compiled here from Debian's header, so that its decoders are
- * instrumented too (libstb.so is not). */
-#define STB_IMAGE_IMPLEMENTATION
-#include <stb_image.h>
-
 #include "image_in.h"
+#include "png_crc.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -20,8 +15,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (size > 2 && data[0] == 'P' && data[1] == 'F' && isspace(data[2])) {
         free(jd_pfm_decode(data, size, &w, &h, why, sizeof why));
     } else {
-        unsigned char *px = jd_image_decode(data, size, &w, &h, 4, why, sizeof why);
-        if (px) stbi_image_free(px);
+        uint8_t *d = fuzz_png_with_crcs(data, size);
+        /* 4 channels as metric reads, 1 as --mask does. */
+        if (d) free(jd_image_decode(d, size, &w, &h, size && data[size - 1] & 1 ? 1 : 4, why, sizeof why));
+        free(d);
     }
     return 0;
 }
