@@ -83,10 +83,7 @@ int jd_jpeg_decode(const uint8_t *data, size_t n, int channels, const jd_picture
     progress.progress_monitor = on_progress;
     d.progress = &progress;
     jpeg_mem_src(&d, data, (unsigned long)n);
-    if (jpeg_read_header(&d, TRUE) != JPEG_HEADER_OK) {
-        snprintf(f.why, sizeof f.why, "tables only, no picture");
-        longjmp(f.back, 1);
-    }
+    jpeg_read_header(&d, TRUE); /* TRUE: a stream of tables only is an error */
     if (!jd_picture_fits(d.image_width, d.image_height, lim)) {
         jd_picture_too_big(d.image_width, d.image_height, lim, err, errlen);
         jpeg_destroy_decompress(&d);

@@ -62,8 +62,10 @@ static void mem_write(png_structp png, png_bytep data, png_size_t n)
 {
     membuf *m = png_get_io_ptr(png);
     if (m->n + n > m->cap) {
+        uint8_t *grown = realloc(m->p, 2 * (m->n + n));
+        if (!grown) png_error(png, "out of memory");
+        m->p = grown;
         m->cap = 2 * (m->n + n);
-        m->p = realloc(m->p, m->cap);
     }
     memcpy(m->p + m->n, data, n);
     m->n += n;

@@ -127,13 +127,10 @@ done
 for lib in "$jade" "$(dirname "$jade")/libjade.so"; do
     [ -f "$lib" ] || continue
     needed=$(readelf -d "$lib" 2>/dev/null | sed -n 's/.*Shared library: \[\(libpng16\|libjpeg\|libstb\)\..*/\1/p' | tr '\n' ' ')
-    case "$needed" in
-        "") ok "$(basename "$lib"): libpng and libjpeg-turbo linked in (static)" ;;
-        *libpng16*libjpeg*|*libjpeg*libpng16*)
-            case "$(basename "$lib") $needed" in
-                "libjade.so "*libstb*) bad "libjade.so still needs libstb: $needed" ;;
-                *) ok "$(basename "$lib"): pictures through libpng and libjpeg-turbo ($needed)" ;;
-            esac ;;
+    case "$(basename "$lib"):$needed" in
+        *:) ok "$(basename "$lib"): libpng and libjpeg-turbo linked in (static)" ;;
+        libjade.so:*libstb*) bad "libjade.so still needs libstb: $needed" ;;
+        *libpng16*libjpeg*|*libjpeg*libpng16*) ok "$(basename "$lib"): pictures through libpng and libjpeg-turbo ($needed)" ;;
         *) bad "$(basename "$lib") links $needed, not libpng16 and libjpeg" ;;
     esac
 done

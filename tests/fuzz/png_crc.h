@@ -9,15 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static uint32_t fuzz_crc32(const uint8_t *p, size_t n)
-{
-    uint32_t c = 0xffffffffu;
-    for (size_t i = 0; i < n; i++) {
-        c ^= p[i];
-        for (int k = 0; k < 8; k++) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
-    }
-    return c ^ 0xffffffffu;
-}
+#include <zlib.h> /* crc32: PNG's own CRC */
 
 static uint8_t *fuzz_png_with_crcs(const uint8_t *data, size_t size)
 {
@@ -28,7 +20,7 @@ static uint8_t *fuzz_png_with_crcs(const uint8_t *data, size_t size)
     for (size_t at = 8; size - at >= 12;) {
         uint32_t len = (uint32_t)d[at] << 24 | (uint32_t)d[at + 1] << 16 | (uint32_t)d[at + 2] << 8 | d[at + 3];
         if (len > size - at - 12) break;
-        uint32_t c = fuzz_crc32(d + at + 4, 4 + (size_t)len);
+        uint32_t c = (uint32_t)crc32(0L, d + at + 4, 4u + len);
         uint8_t *o = d + at + 8 + len;
         o[0] = (uint8_t)(c >> 24); o[1] = (uint8_t)(c >> 16); o[2] = (uint8_t)(c >> 8); o[3] = (uint8_t)c;
         at += 12 + (size_t)len;
