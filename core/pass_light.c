@@ -1,18 +1,56 @@
 /* The light's passes: the light-depth map every mode shadows with, and
  * full's diffusion of the light that entered, level by level in light space. */
 #include "renderer_internal.h"
+#include "slab.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
+/* The light a part d mm thick lets through to its far face, which the
+ * levels' Gaussians of the depth gap do not give: a slab lit on one face
+ * sends T(d) of the light out of the other (the multipole, slab.h; the
+ * reference carries the same across its thin parts), where the levels
+ * give sum_k w_k G_k(d) for a point d below a uniformly lit face. The
+ * table holds the difference per channel (times 21/20, the light map's
+ * scale), over d from 0 to 4 sigma of the widest level: the shading adds
+ * it, times the light that entered above (light.glsl, jd_slab_light), at
+ * points that face away from the light. Added, not multiplied: the levels
+ * also bring light from beside the point, which a factor on their sum
+ * would scale with the thickness below. */
+static void update_slab(jd_renderer *r, const frame_params *f)
+{
+    const jd_diffusion_fit *fit = &r->fit;
+    float range = 4.0f * fit->sigma_mm[DIFF_LOCAL + (r->diff_levels > 0 ? r->diff_levels - 1 : 0)];
+    double slack = 2.0 * f->mm_per_world * f->light_map[3]; /* depth units to mm */
+    unsigned char px[SLAB_SIZE * 4];
+    for (int i = 0; i < SLAB_SIZE; i++) {
+        double d = (i + 0.5) / SLAB_SIZE * range, q = fmax(d - slack, 0.0);
+        for (int c = 0; c < 3; c++) {
+            double refl, trans, levels = 0.0;
+            jd_slab_totals(&f->dipole, c, d, &refl, &trans);
+            for (int k = 0; k < r->diff_levels; k++) {
+                double u = q / fit->sigma_mm[DIFF_LOCAL + k];
+                levels += fit->weight[DIFF_LOCAL + k][c] * exp(-0.5 * u * u);
+            }
+            double add = 21.0 / 20.0 * (trans * f->dipole.rd_total[c] - levels);
+            px[4 * i + c] = (unsigned char)lrint(255.0 * (add > 0.0 ? fmin(add, 1.0) : 0.0));
+        }
+        px[4 * i + 3] = 255;
+    }
+    r->slab_range_mm = range;
+    glBindTexture(GL_TEXTURE_2D, r->slab_tex);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, SLAB_SIZE, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+}
+
 /* The full mode's sum of Gaussians: the finest below a level texel (applied
- * at the shaded point), then one per light-space level. Refitted only when
- * the material or the scale changes. */
+ * at the shaded point), then one per light-space level, and the light
+ * through thin parts that they miss. Refitted only when the material, the
+ * scale or the light map's depth slack changes. */
 void jdr_update_fit(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
-    float key[9] = {s->sigma_s[0], s->sigma_s[1], s->sigma_s[2], s->sigma_a[0], s->sigma_a[1],
-                    s->sigma_a[2], s->eta, s->density, f->mm_per_world};
+    float key[10] = {s->sigma_s[0], s->sigma_s[1], s->sigma_s[2], s->sigma_a[0], s->sigma_a[1],
+                     s->sigma_a[2], s->eta, s->density, f->mm_per_world, f->light_map[3]};
     if (!memcmp(key, r->fit_key, sizeof key)) return;
     memcpy(r->fit_key, key, sizeof key);
     float texel_mm = 2.0f * f->mm_per_world / (float)r->d.diffusion_size;
@@ -23,6 +61,7 @@ void jdr_update_fit(jd_renderer *r, const jd_scene *s, const frame_params *f)
     for (int k = 0; k < DIFF_LEVELS; k++)
         for (int c = 0; c < 3; c++)
             if (r->fit.weight[DIFF_LOCAL + k][c] > 1e-5f) r->diff_levels = k + 1;
+    update_slab(r, f);
 }
 
 void jdr_pass_light_depth(jd_renderer *r, const jd_scene *s, const frame_params *f)

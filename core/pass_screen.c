@@ -39,6 +39,13 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         glUniform3fv(p->wl, 1, wl);
         glUniform4fv(p->light_map_v, 1, f->light_map);
         glUniform3f(p->light_dir_v, f->light_dir.x, f->light_dir.y, f->light_dir.z);
+        if (p->slab >= 0 || p->slab_v >= 0) { /* unit 6: the wide buffer's, which these programs do not read */
+            float scale = 2.0f * f->mm_per_world / r->slab_range_mm;
+            glUniform1i(p->slab >= 0 ? p->slab : p->slab_v, 6);
+            glUniform1f(p->slab >= 0 ? p->slab_scale : p->slab_scale_v, scale);
+            glActiveTexture(GL_TEXTURE6);
+            glBindTexture(GL_TEXTURE_2D, r->slab_tex);
+        }
         for (int i = 0; i < DIFF_TEXTURES; i++) {
             glUniform1i(p->lv[i] >= 0 ? p->lv[i] : p->lv_v[i], 1 + i);
             glActiveTexture(GL_TEXTURE1 + i);

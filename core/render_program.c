@@ -103,6 +103,10 @@ static void shade_locations(shade_prog *p)
     p->albedo_bias = glGetUniformLocation(id, "u_albedo_bias");
     p->ls = glGetUniformLocation(id, "u_ls");
     p->wl = glGetUniformLocation(id, "u_wl");
+    p->slab = glGetUniformLocation(id, "u_slab");
+    p->slab_v = glGetUniformLocation(id, "u_slab_v");
+    p->slab_scale = glGetUniformLocation(id, "u_slab_scale");
+    p->slab_scale_v = glGetUniformLocation(id, "u_slab_scale_v");
 }
 
 static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_error *err)
@@ -127,7 +131,7 @@ static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_err
 
 static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
 {
-    char def[512];
+    char def[560];
     int translucent = m == JD_MODE_SINGLE || m == JD_MODE_DUAL, map = r->albedo_tex != 0;
     /* The model's own colours (JD_ALBEDO: per vertex; _MAP: its texture too)
      * only in the programs that draw the picture: the light-space and
@@ -137,9 +141,16 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
              "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
              "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO %d\n#define JD_ALBEDO_MAP %d\n"
-             "#define JD_ALBEDO_PARTIAL %d\n",
+             "#define JD_ALBEDO_PARTIAL %d\n%s",
              r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
-             m == JD_MODE_FULL && !r->vertex_diffusion, r->albedo, r->albedo && map, r->albedo && map && r->albedo_partial);
+             m == JD_MODE_FULL && !r->vertex_diffusion, r->albedo, r->albedo && map, r->albedo && map && r->albedo_partial,
+             /* Full summed per vertex reads the light map and five levels
+              * there, the light map and the colour texture per fragment:
+              * the light through thin parts' table is one sampler more,
+              * which a GPU of 8 units (VideoCore IV) has no room for with
+              * a colour texture; there full goes without it. */
+             m == JD_MODE_FULL && r->vertex_diffusion && 8 + (r->albedo && map) > r->d.caps->max_texture_units
+                 ? "#define JD_NO_SLAB 1\n" : "");
     /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel] [v_wide] [v_col] [v_uv] */
     int varyings = translucent ? (r->vertex_thickness ? 5 : 6)
                                : 3 + (m == JD_MODE_FULL) + (m == JD_MODE_FULL && r->vertex_diffusion);
@@ -264,8 +275,14 @@ static jd_result build_full(jd_renderer *r, jd_error *err)
         snprintf(def, sizeof def,
                  "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 0\n#define JD_SPREAD 0\n#define JD_A0_ONLY 0\n"
                  "#define JD_VERTEX_THICKNESS 0\n#define JD_FULL 1\n#define JD_VERTEX_DIFFUSION 0\n"
-                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n#define JD_ALBEDO_PARTIAL 0\n",
-                 r->highp);
+                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n#define JD_ALBEDO_PARTIAL 0\n%s",
+                 r->highp,
+                 /* GPUs whose programs hold at most 256 instructions a
+                  * stage (Vivante GC400-GC2000: no instruction cache) have
+                  * no room left in this pass for the light through thin
+                  * parts: 8 of Vivante's instructions, GC400 233 of 256. */
+                 r->d.caps->max_program_instructions > 0 && r->d.caps->max_program_instructions <= 256
+                     ? "#define JD_NO_SLAB 1\n" : "");
         if ((res = build(r, 3, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
                          err)))
             return res;

@@ -138,7 +138,8 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
         (res = jdr_upload_albedo(r, m, a, err)))
         goto fail;
     r->tail_tex = jdr_new_texture(TAIL_SIZE, 1, GL_LINEAR);
-    r->target_bytes += TAIL_SIZE * 4;
+    r->slab_tex = jdr_new_texture(SLAB_SIZE, 1, GL_LINEAR);
+    r->target_bytes += (TAIL_SIZE + SLAB_SIZE) * 4;
     r->tail_key[0] = -1.0f; /* no table yet */
     r->mesh_index_type = m->index_size == 2 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
     static const float quad[] = {-1, -1, 1, -1, -1, 1, 1, 1};
@@ -207,6 +208,7 @@ void jd_renderer_destroy(jd_renderer *r)
                      r->project_vbo};
     glDeleteBuffers(8, bufs);
     if (r->tail_tex) glDeleteTextures(1, &r->tail_tex);
+    if (r->slab_tex) glDeleteTextures(1, &r->slab_tex);
     if (r->albedo_tex) glDeleteTextures(1, &r->albedo_tex);
     if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);

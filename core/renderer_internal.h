@@ -56,6 +56,7 @@ typedef struct shade_prog {
     GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls, wl;
     GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
     GLint albedo_norm, albedo_map, albedo_bias;
+    GLint slab, slab_v, slab_scale, slab_scale_v;
 } shade_prog;
 
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */
@@ -65,6 +66,7 @@ typedef struct diff_prog {
 } diff_prog;
 
 #define TAIL_SIZE 256
+#define SLAB_SIZE 256
 enum { PROJECT_FLOATS = 17 }; /* per vertex of the SH projection's rectangles (pass_sh.c) */
 
 /* GL_EXT_disjoint_timer_query, resolved at start-up when present. */
@@ -97,6 +99,8 @@ struct jd_renderer {
     GLuint mesh_vbo, mesh_ibo, proxy_vbo, proxy_ibo, cap_vbo, cap_ibo, quad_vbo;
     GLuint project_vbo;   /* the SH projection's 6 x 27 rectangles, with their constants */
     GLuint tail_tex;
+    GLuint slab_tex;      /* full: the light a slab lets through, by thickness (pass_light.c) */
+    float slab_range_mm;  /* the thickness at the table's end */
     /* The model's own colours (mesh->colors): the vertex layout, and its
      * texture (0: none) with its size on the GPU and its texels per world
      * unit of the surface (for the entry's mip level). */
@@ -110,7 +114,7 @@ struct jd_renderer {
     timer_query tq;
     uint8_t *tail_px;     /* TAIL_SIZE RGBA texels, rebuilt when the material changes */
     float tail_key[9];
-    float fit_key[9];
+    float fit_key[10];
     jd_diffusion_fit fit;
     int diff_levels;      /* levels whose weights are not all zero */
     float proxy_error;    /* world units: how far the proxy may stray from the mesh */

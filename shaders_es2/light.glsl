@@ -105,6 +105,22 @@ float jd_level_at(sampler2D lv, vec3 p, float n, float s, float slack, float lit
     return l;
 }
 
+// The light that crossed a thin part to a point facing away from the light
+// (pass_light.c, update_slab): the table's slab transmission, less what the
+// levels already bring, for the depth between the point and the lit face
+// above it, times the light that entered there. Both from the second
+// level's shallower part (its light and the mean depth it entered at), one
+// filtered read: the light crossing a part spreads about as wide as the
+// part is thick (the reference's carried profile), and a light-map texel
+// read point by point mottles an ear with the proxy's facets. zs: the
+// point's depth times scale, light-depth units to the table's coordinate.
+vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float scale)
+{
+    vec2 m = texture2D(level, xy).rg;
+    // sqrt(S / (21/20)): the table holds the 21/20.
+    return (m.x * m.x) * texture2D(slab, vec2(zs - m.y * scale, 0.5)).rgb;
+}
+
 // The levels' sum at light-map position p (xy, depth): Rd's weight on each
 // level's Gaussian (w, per channel) times the level's light. The two
 // narrowest levels are read texel by texel (n: the first's texels per side,

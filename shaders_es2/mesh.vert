@@ -52,6 +52,10 @@ uniform vec4 u_light_map_v;  // as the fragment stage's u_light_map
 uniform vec3 u_light_dir_v;
 uniform vec3 u_lw[5];
 uniform vec3 u_ls[2];
+#ifndef JD_NO_SLAB
+uniform sampler2D u_slab_v;    // the light through thin parts, by thickness (jd_slab_light)
+uniform float u_slab_scale_v; // light-depth units to its coordinate
+#endif
 varying vec3 v_wide;
 #endif
 #if JD_TRANSLUCENT
@@ -105,6 +109,12 @@ void main()
     float vis = ndl > 0.0 ? jd_lit_fraction(u_depth_v, v_shadow.xyz, u_light_map_v.xy) : 0.0;
     v_wide = jd_diffused(u_lv0_v, u_lv1_v, u_lv2_v, u_lv3_v, u_lv4_v, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map_v.w,
                          vis * clamp(4.0 * ndl, 0.0, 1.0));
+#ifndef JD_NO_SLAB
+    // A face turned from the light takes what crossed the part from the lit
+    // face above it (none at the terminator, whose light the levels bring).
+    v_wide += clamp(-4.0 * ndl, 0.0, 1.0) *
+              jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v, u_slab_scale_v);
+#endif
 #endif
 #if JD_TRANSLUCENT
     vec3 n = normalize(a_normal);

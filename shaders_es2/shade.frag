@@ -55,6 +55,10 @@ uniform sampler2D u_lv3;
 uniform sampler2D u_lv4;
 uniform vec3 u_lw[5];        // Rd's weight on each level's Gaussian, per channel
 uniform vec3 u_ls[2];        // per level: depth units to sigma_k sqrt(2), levels 1-3 and 4-5; the first level's size
+#ifndef JD_NO_SLAB
+uniform sampler2D u_slab;    // the light through thin parts, by thickness (jd_slab_light)
+uniform float u_slab_scale;  // light-depth units to its coordinate
+#endif
 #endif
 #endif
 
@@ -148,6 +152,12 @@ void main()
 #else
     vec3 wide = jd_diffused(u_lv0, u_lv1, u_lv2, u_lv3, u_lv4, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map.w,
                             vis * clamp(4.0 * ndl, 0.0, 1.0));
+#ifndef JD_NO_SLAB
+    // As the vertex stage's (mesh.vert): through thin parts, to faces
+    // turned from the light.
+    wide += clamp(-4.0 * dot(n, u_light_dir), 0.0, 1.0) *
+            jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale);
+#endif
 #endif
 #if JD_WIDE_ONLY
     gl_FragColor = vec4(sqrt(clamp(0.5 * wide, 0.0, 1.0)), 1.0);
