@@ -30,10 +30,11 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
             for (int k = 0; k < DIFF_LOCAL; k++) wl[c] += fit->weight[k][c];
         for (int k = 0; k < DIFF_LEVELS; k++) {
             for (int c = 0; c < 3; c++) lw[k][c] = k < r->diff_levels ? fit->weight[DIFF_LOCAL + k][c] : 0.0f;
-            /* Light-depth units to the level's sigma * sqrt(2), in millimetres. */
-            ls[k] = 2.0f * f->mm_per_world / (1.41421356f * fit->sigma_mm[DIFF_LOCAL + k]);
+            /* Light-depth units to the level's sigma * sqrt(2), in millimetres,
+             * times sqrt(log2 e): the shaders take exp2 (light.glsl). */
+            ls[k] = 1.20112241f * 2.0f * f->mm_per_world / (1.41421356f * fit->sigma_mm[DIFF_LOCAL + k]);
         }
-        ls[5] = (float)r->d.diffusion_size; /* the spare slot: the first level's texels per side */
+        ls[5] = 1.0f / (float)r->d.diffusion_size; /* the spare slot: the first level's texel size */
         glUniform3fv(p->lw, DIFF_LEVELS, &lw[0][0]);
         glUniform3fv(p->ls, 2, ls);
         glUniform3fv(p->wl, 1, wl);

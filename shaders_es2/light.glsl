@@ -49,16 +49,30 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
 #endif
 }
 
+// The light a point takes from the levels and through thin parts, as one
+// signed value (lima holds no more through the levels' loop without
+// spilling): where n.l > 0 the lit face's ramp over the terminator's first
+// quarter times its shadow (jd_level takes the positive part); where
+// n.l < 0 minus the ramp of a face turned from the light, which takes
+// what crossed a thin part (jd_slab_light; none at the terminator, whose
+// light the levels bring).
+float jd_lit_ramp(float nl, float vis)
+{
+    return nl > 0.0 ? vis * min(4.0 * nl, 1.0) : max(4.0 * nl, -1.0);
+}
+
 // One part of one level's light at a point of light depth zo: S convolved
 // with the level's Gaussian in the light's plane (e = sqrt(S / (21/20))),
 // times the Gaussian of the depth between the point and where that light
 // entered (z, its S-weighted mean depth): G(r) of a 3-D distance factors
-// into the two. s: light-depth units over sigma sqrt(2). slack: the map's
+// into the two. s: light-depth units over sigma sqrt(2), times
+// sqrt(log2 e). slack: the map's
 // own error in depth.
 float jd_level_part(float e, float z, float zo, float s, float slack)
 {
+    // exp2: s carries sqrt(log2 e) (pass_screen.c), a multiply fewer.
     float q = max(abs(zo - z) - slack, 0.0) * s;
-    return e * e * exp(-q * q);
+    return e * e * exp2(-q * q);
 }
 
 // A level: its shallower and its deeper part. A point the light reaches
@@ -67,6 +81,7 @@ float jd_level_part(float e, float z, float zo, float s, float slack)
 // reach: no path through the material, so that part's depth term is 1.
 float jd_level(vec4 l, vec3 p, float s, float slack, float lit)
 {
+    lit = max(lit, 0.0);
     float a = jd_level_part(l.r, l.g, p.z, s, slack), b = jd_level_part(l.b, l.a, p.z, s, slack);
     return abs(p.z - l.g) < abs(p.z - l.a) ? mix(a, l.r * l.r, lit) + b : a + mix(b, l.b * l.b, lit);
 }
@@ -74,19 +89,20 @@ float jd_level(vec4 l, vec3 p, float s, float slack, float lit)
 // A level read at p texel by texel, each texel's parts weighed against the
 // point's depth before they are mixed: filtering the texels' depths first
 // would make depths that no light entered at, and where one passes through
-// the point's depth a bright line would follow it. n: texels per side.
-float jd_level_at(sampler2D lv, vec3 p, float n, float s, float slack, float lit)
+// the point's depth a bright line would follow it. d: its texel size.
+float jd_level_at(sampler2D lv, vec3 p, float d, float s, float slack, float lit)
 {
-    vec2 tc = p.xy * n - 0.5;
-    vec2 f = fract(tc);
-    vec2 b = (floor(tc) + 0.5) / n;
-    float d = 1.0 / n;
-    // A loop over the four texels, each one's bilinear weight |1 - o - f|.
-    // In a fragment stage it stays a loop: unrolled, lima held all four
-    // texels' values at once and spilled (6:29 in the wide pass). Its count
-    // must not look constant, or Mesa's NIR unrolls it: n > 0, so the break
-    // comes after 4. A vertex stage unrolls it (as a loop, vc4's vertex
-    // shader doubled in length).
+    // Texel i of the 2x2 around p lies at p + g d, g = o - f (o: its
+    // offset, 0 or 1 each way; f: p's place between the texel centres), and
+    // its bilinear weight is 1 - |g|: nothing but f is held through the
+    // loop (with the texel centres held as well, lima's wide pass took 12
+    // instruction words more).
+    vec2 f = fract(p.xy / d - 0.5);
+    // A loop over the four texels. In a fragment stage it stays a loop:
+    // unrolled, lima held all four texels' values at once and spilled (5:20
+    // in the wide pass). Its count must not look constant, or Mesa's NIR
+    // unrolls it: d > 0, so the break comes after 4. A vertex stage unrolls
+    // it (as a loop, vc4's vertex shader doubled in length).
     // JD_UNROLL (the device-compiler tool only): a constant trip count, so
     // the compilers' counts say what one more trip costs.
     float l = 0.0;
@@ -94,13 +110,13 @@ float jd_level_at(sampler2D lv, vec3 p, float n, float s, float slack, float lit
     for (int i = 0; i < JD_UNROLL; i++) {
 #elif defined(JD_FRAGMENT)
     for (int i = 0; i < 64; i++) {
-        if (float(i) >= 4.0 * step(0.0, n)) break;
+        if (float(i) >= 4.0 * step(0.0, d)) break;
 #else
     for (int i = 0; i < 4; i++) {
 #endif
-        vec2 o = vec2(mod(float(i), 2.0), floor(float(i) * 0.5));
-        vec2 wt = abs(1.0 - o - f);
-        l += wt.x * wt.y * jd_level(texture2D(lv, b + o * d), p, s, slack, lit);
+        vec2 g = vec2(mod(float(i), 2.0), floor(float(i) * 0.5)) - f;
+        vec2 wt = 1.0 - abs(g);
+        l += wt.x * wt.y * jd_level(texture2D(lv, p.xy + g * d), p, s, slack, lit);
     }
     return l;
 }
@@ -123,14 +139,14 @@ vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float sca
 
 // The levels' sum at light-map position p (xy, depth): Rd's weight on each
 // level's Gaussian (w, per channel) times the level's light. The two
-// narrowest levels are read texel by texel (n: the first's texels per side,
-// the second has half as many); the wider ones forgive a filtered depth and
+// narrowest levels are read texel by texel (d: the first one's texel size,
+// the second's twice that); the wider ones forgive a filtered depth and
 // take one filtered read.
 vec3 jd_diffused(sampler2D lv0, sampler2D lv1, sampler2D lv2, sampler2D lv3, sampler2D lv4, vec3 p, vec3 w[5],
-                 vec3 s[2], float n, float slack, float lit)
+                 vec3 s[2], float d, float slack, float lit)
 {
-    return (21.0 / 20.0) * (w[0] * jd_level_at(lv0, p, n, s[0].x, slack, lit)
-                          + w[1] * jd_level_at(lv1, p, 0.5 * n, s[0].y, slack, lit)
+    return (21.0 / 20.0) * (w[0] * jd_level_at(lv0, p, d, s[0].x, slack, lit)
+                          + w[1] * jd_level_at(lv1, p, 2.0 * d, s[0].y, slack, lit)
                           + w[2] * jd_level(texture2D(lv2, p.xy), p, s[0].z, slack, lit)
                           + w[3] * jd_level(texture2D(lv3, p.xy), p, s[1].x, slack, lit)
                           + w[4] * jd_level(texture2D(lv4, p.xy), p, s[1].y, slack, lit));

@@ -107,13 +107,12 @@ void main()
     if (dot(nv, u_eye - a_position) < 0.0) nv = -nv;
     float ndl = dot(nv, u_light_dir_v);
     float vis = ndl > 0.0 ? jd_lit_fraction(u_depth_v, v_shadow.xyz, u_light_map_v.xy) : 0.0;
-    v_wide = jd_diffused(u_lv0_v, u_lv1_v, u_lv2_v, u_lv3_v, u_lv4_v, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map_v.w,
-                         vis * clamp(4.0 * ndl, 0.0, 1.0));
+    float lit = jd_lit_ramp(ndl, vis);
+    v_wide = jd_diffused(u_lv0_v, u_lv1_v, u_lv2_v, u_lv3_v, u_lv4_v, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map_v.w, lit);
 #ifndef JD_NO_SLAB
     // A face turned from the light takes what crossed the part from the lit
-    // face above it (none at the terminator, whose light the levels bring).
-    v_wide += clamp(-4.0 * ndl, 0.0, 1.0) *
-              jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v, u_slab_scale_v);
+    // face above it.
+    v_wide += max(-lit, 0.0) * jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v, u_slab_scale_v);
 #endif
 #endif
 #if JD_TRANSLUCENT

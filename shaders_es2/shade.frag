@@ -128,9 +128,17 @@ void main()
     // instead, and these where they are used.
     vec3 alb = albedo_factor();
 #endif
+#if JD_WIDE_ONLY
+    // The summing pass takes only n.l's sign and its first quarter (the
+    // terminator's ramp): the interpolated normal needs no normalising,
+    // nor the view its length for the side test.
+    vec3 n = v_normal;
+    if (dot(n, u_eye - v_pos) < 0.0) n = -n;
+#else
     vec3 n = normalize(v_normal);
     vec3 v = normalize(u_eye - v_pos);
     if (dot(n, v) < 0.0) n = -n;
+#endif
 #if JD_A0_ONLY
     // The spread funnel's input: A0 premultiplied by coverage (alpha 1), at
     // half range so values up to 2 survive RGBA8.
@@ -138,8 +146,10 @@ void main()
 #else
     float ndl = max(dot(n, u_light_dir), 0.0);
     float vis = ndl > 0.0 ? jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy) : 0.0;
+#if !JD_WIDE_ONLY
     vec3 h = normalize(u_light_dir + v);
     float spec = ndl > 0.0 ? vis * pow(max(dot(n, h), 0.0), u_shading.z) : 0.0;
+#endif
 #if JD_FULL
 #if JD_VERTEX_DIFFUSION
     vec3 wide = v_wide;
@@ -150,13 +160,12 @@ void main()
     vec3 we = wb.a > 0.01 ? wb.rgb / wb.a : vec3(0.0);
     vec3 wide = 2.0 * we * we;
 #else
-    vec3 wide = jd_diffused(u_lv0, u_lv1, u_lv2, u_lv3, u_lv4, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map.w,
-                            vis * clamp(4.0 * ndl, 0.0, 1.0));
+    float lit = jd_lit_ramp(dot(n, u_light_dir), vis);
+    vec3 wide = jd_diffused(u_lv0, u_lv1, u_lv2, u_lv3, u_lv4, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map.w, lit);
 #ifndef JD_NO_SLAB
     // As the vertex stage's (mesh.vert): through thin parts, to faces
     // turned from the light.
-    wide += clamp(-4.0 * dot(n, u_light_dir), 0.0, 1.0) *
-            jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale);
+    wide += max(-lit, 0.0) * jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale);
 #endif
 #endif
 #if JD_WIDE_ONLY
