@@ -275,14 +275,8 @@ static jd_result build_full(jd_renderer *r, jd_error *err)
         snprintf(def, sizeof def,
                  "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 0\n#define JD_SPREAD 0\n#define JD_A0_ONLY 0\n"
                  "#define JD_VERTEX_THICKNESS 0\n#define JD_FULL 1\n#define JD_VERTEX_DIFFUSION 0\n"
-                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n#define JD_ALBEDO_PARTIAL 0\n%s",
-                 r->highp,
-                 /* GPUs whose programs hold at most 256 instructions a
-                  * stage (Vivante GC400-GC2000: no instruction cache) have
-                  * no room left in this pass for the light through thin
-                  * parts: 8 of Vivante's instructions, GC400 233 of 256. */
-                 r->d.caps->max_program_instructions > 0 && r->d.caps->max_program_instructions <= 256
-                     ? "#define JD_NO_SLAB 1\n" : "");
+                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n#define JD_ALBEDO_PARTIAL 0\n",
+                 r->highp);
         if ((res = build(r, 3, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
                          err)))
             return res;
