@@ -84,7 +84,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     }
     if (p->wide >= 0) {
         glUniform1i(p->wide, 6);
-        glUniform2f(p->inv_viewport, (float)r->wide.w / r->wide.tw / (float)w, (float)r->wide.h / r->wide.th / (float)h);
+        glUniform2f(p->wide_scale, 0.5f * (float)r->wide.w / r->wide.tw, 0.5f * (float)r->wide.h / r->wide.th);
         glActiveTexture(GL_TEXTURE6);
         glBindTexture(GL_TEXTURE_2D, r->wide.tex);
         glActiveTexture(GL_TEXTURE0);

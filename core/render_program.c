@@ -84,6 +84,7 @@ static void shade_locations(shade_prog *p)
     p->a0_scale = glGetUniformLocation(id, "u_a0_scale");
     p->spread = glGetUniformLocation(id, "u_spread");
     p->inv_viewport = glGetUniformLocation(id, "u_inv_viewport");
+    p->wide_scale = glGetUniformLocation(id, "u_wide_scale");
     p->w0 = glGetUniformLocation(id, "u_w0");
     p->light_map = glGetUniformLocation(id, "u_light_map");
     p->shadow_bias = glGetUniformLocation(id, "u_shadow_bias");
@@ -151,9 +152,8 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
               * a colour texture; there full goes without it. */
              m == JD_MODE_FULL && r->vertex_diffusion && 8 + (r->albedo && map) > r->d.caps->max_texture_units
                  ? "#define JD_NO_SLAB 1\n" : "");
-    /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel] [v_wide] [v_col] [v_uv] */
-    int varyings = translucent ? (r->vertex_thickness ? 5 : 6)
-                               : 3 + (m == JD_MODE_FULL) + (m == JD_MODE_FULL && r->vertex_diffusion);
+    /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel] [v_wide or v_screen] [v_col] [v_uv] */
+    int varyings = translucent ? (r->vertex_thickness ? 5 : 6) : 3 + 2 * (m == JD_MODE_FULL);
     varyings += r->albedo + (r->albedo && map);
     jd_result res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
                           &r->shade[m].id, err);

@@ -52,7 +52,7 @@ typedef struct shade_prog {
     GLuint id;
     GLint mvp, light_mvp, eye, irr, box_min, box_max, inv_eta, inset;
     GLint light_dir, albedo, light_color, shading, depth, tail, depth_v, tail_v, f0, a0_scale;
-    GLint spread, inv_viewport, w0;
+    GLint spread, inv_viewport, w0, wide_scale;
     GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls, wl;
     GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
     GLint albedo_norm, albedo_map, albedo_bias;

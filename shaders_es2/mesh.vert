@@ -58,6 +58,13 @@ uniform float u_slab_scale_v; // light-depth units to its coordinate
 #endif
 varying vec3 v_wide;
 #endif
+#if JD_FULL && JD_WIDE_BUFFER
+// Where the point falls in the levels' half-resolution sum, before the
+// division by w (the fragment stage reads it with texture2DProj): from
+// gl_FragCoord there it took lima 6 instruction words more (84, not 78).
+uniform vec2 u_wide_scale;   // half the used corner of that layer's texture
+varying vec3 v_screen;
+#endif
 #if JD_TRANSLUCENT
 uniform vec3 u_box_min;
 uniform vec3 u_box_max;
@@ -155,5 +162,8 @@ void main()
 #else
     v_light = light;
 #endif
+#endif
+#if JD_FULL && JD_WIDE_BUFFER
+    v_screen = vec3((gl_Position.xy + gl_Position.w) * u_wide_scale, gl_Position.w);
 #endif
 }

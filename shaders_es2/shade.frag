@@ -26,7 +26,7 @@ varying vec3 v_trans;
 varying vec3 v_dir;
 uniform samplerCube u_irr;   // the SH irradiance by direction, RGBM: rgb * a * 4 (irradiance.frag)
 #endif
-#if JD_SPREAD || JD_WIDE_BUFFER
+#if JD_SPREAD
 uniform vec2 u_inv_viewport; // screen position to the used corner of the low-resolution layer
 #endif
 #if JD_SPREAD
@@ -45,6 +45,7 @@ varying vec3 v_wide;         // the levels' light, per vertex (jd_diffused)
 // per fragment at half resolution (it is smooth: its finest Gaussian is a
 // level texel wide) and read here once: sqrt(wide / 2), alpha = covered.
 uniform sampler2D u_wide;
+varying vec3 v_screen;       // where in it (mesh.vert), before the division by w
 #else
 // The five light-space levels: sqrt(S / (21/20)) and mean depth of the
 // light that entered near the map's surface (RG) and elsewhere (BA).
@@ -156,7 +157,7 @@ void main()
 #elif JD_WIDE_BUFFER
     // Filtered with its coverage: a pixel on the silhouette takes the
     // covered neighbours' light, not the empty background's.
-    vec4 wb = texture2D(u_wide, gl_FragCoord.xy * u_inv_viewport);
+    vec4 wb = texture2DProj(u_wide, v_screen);
     vec3 we = wb.a > 0.01 ? wb.rgb / wb.a : vec3(0.0);
     vec3 wide = 2.0 * we * we;
 #else
