@@ -26,8 +26,15 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
 {
     vec2 tc = l.xy * size.x - 0.5;
     vec2 f = fract(tc);
-    vec2 b = (floor(tc) + 0.5) * size.y;
     float d = size.y;
+    // The nearest texel centre below l is l less f texels: no floor (2 of
+    // lima's words, 8 of vc4's). Dual's shading keeps the floor: with it
+    // gone lima spilled there (1:1).
+#if defined(JD_SPREAD) && JD_SPREAD
+    vec2 b = (floor(tc) + 0.5) * d;
+#else
+    vec2 b = l.xy - f * d;
+#endif
     // Under the two-byte packing each depth is read as high byte + low
     // byte / 255, without jd_unpack's exact recovery of the bytes (8 of
     // lima's instruction words fewer): a texture unit's error of 1e-5 is
