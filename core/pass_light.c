@@ -91,7 +91,7 @@ static void diffuse_step(jd_renderer *r, const diff_prog *p, const target *from,
     glUseProgram(p->id);
     glUniform1i(p->src, 0);
     glUniform1i(p->ref, 1);
-    glUniform2f(p->ref_scale, 1.0f / (float)to->w, 1.0f / (float)to->h);
+    glUniform2f(p->ref_scale, (float)from->tw / (float)from->w, (float)from->th / (float)from->h);
     glUniform2f(p->uv_scale, (float)from->w / from->tw, (float)from->h / from->th);
     glUniform2f(p->step, sx, sy);
     if (box) { /* two taps a trip */

@@ -15,7 +15,7 @@
 // like with like.
 uniform sampler2D u_src;
 uniform sampler2D u_ref;    // the light-depth map: each texel's own lit surface
-uniform vec2 u_ref_scale;   // fragment coordinates to the light map's
+uniform vec2 u_ref_scale;   // the source's coordinates to the light map's (from gl_FragCoord lima took 5 words more)
 uniform vec2 u_step;        // texel offset between taps, along the blur direction
 uniform int u_taps;         // taps on each side of the centre for this level, 1..JD_TAPS
 uniform float u_w[2 * JD_TAPS + 1]; // the Gaussian's weights, tap 0 (-u_taps) to 2 u_taps
@@ -24,6 +24,11 @@ uniform float u_near;       // light-depth units that still count as this texel'
 uniform float u_box;        // light-map texels a side of the square one output texel gathers
 #endif
 varying vec2 v_uv;
+
+// The light map's depths read as high byte + low byte / 255, without
+// jd_unpack's exact recovery of the bytes (the PCF's reasoning, light.glsl):
+// the levels keep their depths in one byte.
+const vec2 jd_bytes = vec2(1.0, 1.0 / 255.0);
 
 // sqrt(S) and the mean depth of a part; `other`, the depth to give it where
 // it holds no light: filtering between texels must not see a depth that no
@@ -40,7 +45,7 @@ vec2 part(vec2 a, float wsum, float other)
 void tap(vec2 uv, float w, float zr, inout vec2 near, inout vec2 far, inout float wsum)
 {
     vec4 t = texture2D(u_src, uv);
-    float z = jd_unpack(t), lit = w * step(z, 0.998);
+    float z = dot(t.xy, jd_bytes), lit = w * step(z, 0.998);
     vec2 ws = (lit * t.a * t.a) * vec2(1.0, z), wn = ws * step(abs(z - zr), u_near);
     near += wn;
     far += ws - wn;
@@ -62,7 +67,7 @@ void tap(vec2 uv, float w, float zr, inout vec2 near, inout vec2 far, inout floa
 
 void main()
 {
-    float zr = jd_unpack(texture2D(u_ref, gl_FragCoord.xy * u_ref_scale));
+    float zr = dot(texture2D(u_ref, v_uv * u_ref_scale).xy, jd_bytes);
     // Normalised convolution on the light's coverage: near the object's
     // outline as the light sees it there is lit surface on one side and
     // nothing (not dark surface) on the other.
