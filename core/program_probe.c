@@ -65,6 +65,7 @@ int jd_program_probe(const GLuint *progs, int n, GLuint fbo, GLuint quad_vbo, in
                 GLint m = glGetUniformLocation(progs[i], "u_mvp");
                 if (m >= 0) glUniformMatrix4fv(m, 1, GL_FALSE, identity);
                 if ((m = glGetUniformLocation(progs[i], "u_light_mvp")) >= 0) glUniformMatrix4fv(m, 1, GL_FALSE, identity);
+                if ((m = glGetUniformLocation(progs[i], "u_light_tex")) >= 0) glUniformMatrix4fv(m, 1, GL_FALSE, identity);
                 glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
             }
             glReadPixels(0, 0, n, 1, GL_RGBA, GL_UNSIGNED_BYTE, px[pass]);

@@ -65,7 +65,7 @@ static void shade_locations(shade_prog *p)
 {
     GLuint id = p->id;
     p->mvp = glGetUniformLocation(id, "u_mvp");
-    p->light_mvp = glGetUniformLocation(id, "u_light_mvp");
+    p->light_tex = glGetUniformLocation(id, "u_light_tex");
     p->eye = glGetUniformLocation(id, "u_eye");
     p->irr = glGetUniformLocation(id, "u_irr");
     p->box_min = glGetUniformLocation(id, "u_box_min");

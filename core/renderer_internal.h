@@ -50,7 +50,7 @@ static inline int pot(int n)
 
 typedef struct shade_prog {
     GLuint id;
-    GLint mvp, light_mvp, eye, irr, box_min, box_max, inv_eta, inset;
+    GLint mvp, light_tex, eye, irr, box_min, box_max, inv_eta, inset;
     GLint light_dir, albedo, light_color, shading, depth, tail, depth_v, tail_v, f0, a0_scale;
     GLint spread, inv_viewport, w0, wide_scale;
     GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls, wl;

@@ -5,7 +5,11 @@
 attribute vec3 a_position;
 attribute vec3 a_normal;
 uniform mat4 u_mvp;
-uniform mat4 u_light_mvp;
+// The light's view to light-map coordinates: xy in the map and depth in
+// [0, 1] (its clip space with the 0.5 scale and offset folded in on the
+// CPU: 8 of lima's vertex words fewer). The light is orthographic: its w
+// is 1, and a direction's z comes out halved.
+uniform mat4 u_light_tex;
 uniform mediump vec3 u_eye; // shared with the fragment stage: precisions must match
 uniform vec2 u_shadow_bias;  // light-depth units: per unit of the surface's slope to the light, and always
 varying vec3 v_pos;
@@ -97,10 +101,10 @@ void main()
     v_pos = a_position;
     v_normal = a_normal;
     gl_Position = u_mvp * vec4(a_position, 1.0);
-    vec4 sp = u_light_mvp * vec4(a_position, 1.0);
-    v_shadow = vec4(sp.xyz * 0.5 + 0.5, sp.z * 0.5 + 0.5);
+    vec4 sp = u_light_tex * vec4(a_position, 1.0);
+    v_shadow = sp.xyzz;
     // The light looks down its +z: a normal facing it has a negative z there.
-    float cl = clamp(abs((u_light_mvp * vec4(normalize(a_normal), 0.0)).z), 0.2, 1.0);
+    float cl = clamp(abs(2.0 * (u_light_tex * vec4(normalize(a_normal), 0.0)).z), 0.2, 1.0);
     v_shadow.z -= u_shadow_bias.y + u_shadow_bias.x * (1.0 + sqrt(1.0 - cl * cl) / cl);
 #if JD_FULL && !JD_WIDE_ONLY
     vec3 nf = normalize(a_normal);
@@ -128,8 +132,7 @@ void main()
     if (dot(n, view) < 0.0) n = -n;
     // Thickness is read at a point moved inward, so the surface does not
     // measure itself.
-    vec4 lp = u_light_mvp * vec4(a_position - u_inset * n, 1.0);
-    vec3 light = lp.xyz * 0.5 + 0.5;
+    vec3 light = (u_light_tex * vec4(a_position - u_inset * n, 1.0)).xyz;
     vec3 r = refract(-view, n, u_inv_eta);
     if (dot(r, r) < 1e-6) r = -n;
     // Box projection: where the refracted ray leaves the bounding cube, seen
