@@ -5,6 +5,7 @@
 #include "mesh_albedo.h"
 #include "mesh_load.h"
 
+#include <math.h>
 #include <string.h>
 
 /* ---- start-up ---------------------------------------------------------- */
@@ -91,12 +92,16 @@ void jdr_free_target(target *t)
 }
 
 /* One vertex as uploaded: the position centred and scaled to the unit
- * sphere (coordinates small for fp16 varyings), the normal, and for a mesh
- * with colours its texture coordinates and colour (4 bytes, normalised). */
+ * sphere (coordinates small for fp16 varyings), the normal of unit length
+ * (the vertex stages take it as it comes: a normalize per vertex fewer in
+ * every program; (0, 0, 1) for one of no length), and for a mesh with
+ * colours its texture coordinates and colour (4 bytes, normalised). */
 static void pack_vertex(uint8_t *o, const jd_mesh *m, uint32_t i, jd_vec3 c, float inv_r)
 {
     const float *p = m->positions + 3 * (size_t)i, *n = m->normals + 3 * (size_t)i;
-    float v[8] = {(p[0] - c.x) * inv_r, (p[1] - c.y) * inv_r, (p[2] - c.z) * inv_r, n[0], n[1], n[2], 0.0f, 0.0f};
+    float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    jd_vec3 u = l > 1e-20f && isfinite(l) ? jd_v3(n[0] / l, n[1] / l, n[2] / l) : jd_v3(0.0f, 0.0f, 1.0f);
+    float v[8] = {(p[0] - c.x) * inv_r, (p[1] - c.y) * inv_r, (p[2] - c.z) * inv_r, u.x, u.y, u.z, 0.0f, 0.0f};
     if (!m->colors) {
         memcpy(o, v, 24);
         return;

@@ -11,7 +11,7 @@ varying vec3 v_light;
 void main()
 {
     gl_Position = u_mvp * vec4(a_position, 1.0);
-    v_ndl = max(dot(normalize(a_normal), u_light_dir), 0.0);
+    v_ndl = max(dot(a_normal, u_light_dir), 0.0);
     vec4 lp = u_light_mvp * vec4(a_position, 1.0);
     v_light = lp.xyz * 0.5 + 0.5;
     v_light.z -= u_bias;

@@ -104,17 +104,17 @@ void main()
     vec4 sp = u_light_tex * vec4(a_position, 1.0);
     v_shadow = sp.xyzz;
     // The light looks down its +z: a normal facing it has a negative z there.
-    float cl = clamp(abs(2.0 * (u_light_tex * vec4(normalize(a_normal), 0.0)).z), 0.2, 1.0);
+    float cl = clamp(abs(2.0 * (u_light_tex * vec4(a_normal, 0.0)).z), 0.2, 1.0);
     v_shadow.z -= u_shadow_bias.y + u_shadow_bias.x * (1.0 + sqrt(1.0 - cl * cl) / cl);
 #if JD_FULL && !JD_WIDE_ONLY
-    vec3 nf = normalize(a_normal);
+    vec3 nf = a_normal;
     vec3 vf = normalize(u_eye - a_position);
     if (dot(nf, vf) < 0.0) nf = -nf;
     float ndl_v = max(dot(nf, u_light_dir), 0.0);
     v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_f0), jd_fresnel_tc(dot(nf, vf), u_f0));
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
-    vec3 nv = normalize(a_normal);
+    vec3 nv = a_normal;
     if (dot(nv, u_eye - a_position) < 0.0) nv = -nv;
     float ndl = dot(nv, u_light_dir_v);
     float vis = ndl > 0.0 ? jd_lit_fraction(u_depth_v, v_shadow.xyz, u_light_map_v.xy) : 0.0;
@@ -127,7 +127,7 @@ void main()
 #endif
 #endif
 #if JD_TRANSLUCENT
-    vec3 n = normalize(a_normal);
+    vec3 n = a_normal;
     vec3 view = normalize(u_eye - a_position);
     if (dot(n, view) < 0.0) n = -n;
     // Thickness is read at a point moved inward, so the surface does not
