@@ -93,7 +93,14 @@ varying vec3 v_dir;          // where the irradiance is looked up
 void main()
 {
 #if JD_ALBEDO
+    // Grouped as lima's vertex compiler took it shortest: (a_color (a_color
+    // norm)) in full (67 words, 72 the other way), (a_color a_color) norm
+    // elsewhere (the translucent modes 125, 134 the other way).
+#if JD_FULL
+    v_col = vec4(a_color.rgb * (a_color.rgb * u_albedo_norm), a_color.a);
+#else
     v_col = vec4(a_color.rgb * a_color.rgb * u_albedo_norm, a_color.a);
+#endif
 #if JD_ALBEDO_MAP
     v_uv = a_uv;
 #endif
@@ -167,6 +174,6 @@ void main()
 #endif
 #endif
 #if JD_FULL && JD_WIDE_BUFFER
-    v_screen = vec3((gl_Position.xy + gl_Position.w) * u_wide_scale, gl_Position.w);
+    v_screen = vec3(gl_Position.xy * u_wide_scale + gl_Position.w * u_wide_scale, gl_Position.w);
 #endif
 }
