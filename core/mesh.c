@@ -58,13 +58,18 @@ void jd_mesh_placement(const jd_mesh *m, jd_vec3 *centre, float *radius)
     if (!(*radius > 0)) *radius = 1.0f; /* a single point */
 }
 
+jd_vec3 jd_unit_normal(const float n[3])
+{
+    float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    return l > 1e-20f && isfinite(l) ? jd_v3(n[0] / l, n[1] / l, n[2] / l) : jd_v3(0.0f, 0.0f, 1.0f);
+}
+
 static void normalize_all(jd_mesh *m)
 {
     for (uint32_t i = 0; i < m->num_vertices; i++) {
         float *n = m->normals + 3 * i;
-        float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (l > 1e-20f && isfinite(l)) { n[0] /= l; n[1] /= l; n[2] /= l; }
-        else { n[0] = 0; n[1] = 0; n[2] = 1; }
+        jd_vec3 u = jd_unit_normal(n);
+        n[0] = u.x; n[1] = u.y; n[2] = u.z;
     }
 }
 

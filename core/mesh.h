@@ -43,6 +43,8 @@ void jd_mesh_compute_bounds(jd_mesh *m);
 void jd_mesh_placement(const jd_mesh *m, jd_vec3 *centre, float *radius);
 /* Area-weighted vertex normals; degenerate vertices get +Z. */
 void jd_mesh_compute_normals(jd_mesh *m);
+/* n at unit length; (0, 0, 1) for one of no (or no finite) length. */
+jd_vec3 jd_unit_normal(const float n[3]);
 /* Normalises normals read from a file; zero or non-finite ones are recomputed. */
 void jd_mesh_fix_normals(jd_mesh *m);
 /* Turns a mesh wound inside out (its enclosed volume negative by more than

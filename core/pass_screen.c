@@ -15,15 +15,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     glUniform3fv(p->albedo, 1, f->albedo);
     glUniform3fv(p->light_color, 1, f->light_color);
     glUniform4fv(p->shading, 1, f->shading);
-    {
-        /* The light's clip space to light-map coordinates ([-1, 1] to
-         * [0, 1] in x, y and depth) folded into the matrix: rows 0-2 become
-         * (row + row 3) / 2 (column-major storage). */
-        jd_mat4 t = f->light_mvp;
-        for (int c = 0; c < 4; c++)
-            for (int i = 0; i < 3; i++) t.m[4 * c + i] = 0.5f * (f->light_mvp.m[4 * c + i] + f->light_mvp.m[4 * c + 3]);
-        glUniformMatrix4fv(p->light_tex, 1, GL_FALSE, t.m);
-    }
+    glUniformMatrix4fv(p->light_tex, 1, GL_FALSE, f->light_tex.m);
     glUniform4fv(p->light_map, 1, f->light_map);
     glUniform2fv(p->shadow_bias, 1, f->shadow_bias);
     if (p->f0 >= 0) glUniform1f(p->f0, f->f0);

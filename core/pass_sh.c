@@ -44,7 +44,7 @@ void jdr_pass_capture(jd_renderer *r, const jd_scene *s, const frame_params *f)
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
     glUseProgram(r->capture_prog);
-    glUniformMatrix4fv(r->cap_light_mvp, 1, GL_FALSE, f->light_mvp.m);
+    glUniformMatrix4fv(r->cap_light_tex, 1, GL_FALSE, f->light_tex.m);
     glUniform3f(r->cap_light_dir, f->light_dir.x, f->light_dir.y, f->light_dir.z);
     glUniform3fv(r->cap_light_color, 1, f->light_color);
     glUniform1f(r->cap_bias, 1.5f / (float)r->d.proxy_cells);

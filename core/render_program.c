@@ -199,7 +199,7 @@ static jd_result build_sh(jd_renderer *r, jd_error *err)
     if ((res = build(r, 2, "shaders_es2/capture.vert", "shaders_es2/capture.frag", def, mesh_attribs, &r->capture_prog, err)))
         return res;
     r->cap_mvp = glGetUniformLocation(r->capture_prog, "u_mvp");
-    r->cap_light_mvp = glGetUniformLocation(r->capture_prog, "u_light_mvp");
+    r->cap_light_tex = glGetUniformLocation(r->capture_prog, "u_light_tex");
     r->cap_light_dir = glGetUniformLocation(r->capture_prog, "u_light_dir");
     r->cap_bias = glGetUniformLocation(r->capture_prog, "u_bias");
     r->cap_depth = glGetUniformLocation(r->capture_prog, "u_depth");

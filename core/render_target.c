@@ -5,7 +5,6 @@
 #include "mesh_albedo.h"
 #include "mesh_load.h"
 
-#include <math.h>
 #include <string.h>
 
 /* ---- start-up ---------------------------------------------------------- */
@@ -99,8 +98,7 @@ void jdr_free_target(target *t)
 static void pack_vertex(uint8_t *o, const jd_mesh *m, uint32_t i, jd_vec3 c, float inv_r)
 {
     const float *p = m->positions + 3 * (size_t)i, *n = m->normals + 3 * (size_t)i;
-    float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    jd_vec3 u = l > 1e-20f && isfinite(l) ? jd_v3(n[0] / l, n[1] / l, n[2] / l) : jd_v3(0.0f, 0.0f, 1.0f);
+    jd_vec3 u = jd_unit_normal(n);
     float v[8] = {(p[0] - c.x) * inv_r, (p[1] - c.y) * inv_r, (p[2] - c.z) * inv_r, u.x, u.y, u.z, 0.0f, 0.0f};
     if (!m->colors) {
         memcpy(o, v, 24);

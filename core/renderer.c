@@ -329,6 +329,10 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
     f->light_dir = sv.light_dir;
     jd_mat4 lview = jd_m4_look_at(jd_v3_scale(f->light_dir, 2.0f), jd_v3(0, 0, 0), jd_v3(0, 1, 0));
     f->light_mvp = jd_m4_mul(jd_m4_ortho(-1, 1, -1, 1, 1, 3), lview);
+    jd_mat4 to_map = jd_m4_identity();
+    to_map.m[0] = to_map.m[5] = to_map.m[10] = 0.5f;
+    to_map.m[12] = to_map.m[13] = to_map.m[14] = 0.5f;
+    f->light_tex = jd_m4_mul(to_map, f->light_mvp);
 
     jd_scene_optics o;
     jd_scene_optics_of(s, &sv, &o);

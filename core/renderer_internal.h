@@ -131,7 +131,7 @@ struct jd_renderer {
     GLuint aa_prog, up_prog;
     GLint aa_src, aa_texel, aa_scale, up_src, up_scale;
     GLint depth_mvp, depth_light_dir, depth_f0;
-    GLint cap_mvp, cap_light_mvp, cap_light_dir, cap_bias, cap_depth, cap_light_color;
+    GLint cap_mvp, cap_light_tex, cap_light_dir, cap_bias, cap_depth, cap_light_color;
     GLint proj_atlas, proj_texel, rm_src, rm_texel, rf_src, rf_texel, rl_src, rl_texel;
     GLuint irr_prog; /* the SH result to the irradiance map */
     GLint irr_src, irr_size, irr_face;
@@ -178,6 +178,9 @@ struct jd_renderer {
 /* Everything a frame derives from the scene on the CPU, once. */
 typedef struct frame_params {
     jd_mat4 mvp, light_mvp;
+    /* light_mvp with its clip space taken to light-map coordinates ([-1, 1]
+     * to [0, 1] in x, y and depth): what the shading and capture passes read. */
+    jd_mat4 light_tex;
     jd_vec3 eye, light_dir;
     float light_color[3], albedo[3];
     float a0_scale[3], f0;

@@ -3,7 +3,7 @@
 attribute vec3 a_position;
 attribute vec3 a_normal;
 uniform mat4 u_mvp;
-uniform mat4 u_light_mvp;
+uniform mat4 u_light_tex;   // to light-map coordinates (mesh.vert)
 uniform vec3 u_light_dir;
 uniform float u_bias;
 varying float v_ndl;
@@ -12,7 +12,6 @@ void main()
 {
     gl_Position = u_mvp * vec4(a_position, 1.0);
     v_ndl = max(dot(a_normal, u_light_dir), 0.0);
-    vec4 lp = u_light_mvp * vec4(a_position, 1.0);
-    v_light = lp.xyz * 0.5 + 0.5;
+    v_light = (u_light_tex * vec4(a_position, 1.0)).xyz;
     v_light.z -= u_bias;
 }
