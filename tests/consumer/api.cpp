@@ -54,6 +54,7 @@ int main()
         FN(jd_mesh_albedo_at),
         FN(jd_mesh_compute_normals),
         FN(jd_mesh_fix_normals),
+        FN(jd_unit_normal),
         FN(jd_mesh_index),
         FN(jd_mesh_load_draco),
         FN(jd_mesh_normals_follow_winding),
