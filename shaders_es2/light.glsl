@@ -15,6 +15,11 @@ float jd_fresnel_tc(float cosv, float f0_cancels)
 // Percentage-closer filtering: the four nearest texels of the light depth
 // compared with the point l (light-map xy, depth), the answers (not the
 // depths) mixed bilinearly. size: texels per side and their inverse.
+#if defined(JD_ALBEDO) && defined(JD_FULL)
+#if JD_ALBEDO && !JD_FULL
+#define JD_PCF_SCALAR 1
+#endif
+#endif
 #if JD_PACK_HIGHP
 #define JD_PCF_EXACT 1
 #elif defined(JD_SPREAD)
@@ -48,11 +53,23 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
     return mix(mix(s00, s10, f.x), mix(s01, s11, f.x), f.y);
 #else
     const vec2 k = vec2(1.0, 1.0 / 255.0);
+#ifdef JD_PCF_SCALAR
+    // none's and single's with a colour: the vector form below spilled on
+    // lima there (1:1, the colour held from the shader's start).
     float s00 = step(l.z, dot(texture2D(depth, b).xy, k));
     float s10 = step(l.z, dot(texture2D(depth, b + vec2(d, 0.0)).xy, k));
     float s01 = step(l.z, dot(texture2D(depth, b + vec2(0.0, d)).xy, k));
     float s11 = step(l.z, dot(texture2D(depth, b + vec2(d, d)).xy, k));
     return mix(mix(s00, s10, f.x), mix(s01, s11, f.x), f.y);
+#else
+    // The four tests and the first mix as vector operations: 2 of lima's
+    // instruction words fewer than one texel at a time.
+    vec4 z = vec4(dot(texture2D(depth, b).xy, k), dot(texture2D(depth, b + vec2(d, 0.0)).xy, k),
+                  dot(texture2D(depth, b + vec2(0.0, d)).xy, k), dot(texture2D(depth, b + vec2(d, d)).xy, k));
+    vec4 s = step(vec4(l.z), z);
+    vec2 m = mix(s.xz, s.yw, f.x);
+    return mix(m.x, m.y, f.y);
+#endif
 #endif
 }
 

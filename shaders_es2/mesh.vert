@@ -12,7 +12,11 @@ uniform mat4 u_mvp;
 uniform mat4 u_light_tex;
 uniform mediump vec3 u_eye; // shared with the fragment stage: precisions must match
 uniform vec2 u_shadow_bias;  // light-depth units: per unit of the surface's slope to the light, and always
+#if JD_FULL && !JD_WIDE_ONLY
+varying vec3 v_view;        // towards the eye, unit length: full's fragment stage takes it as it comes
+#else
 varying vec3 v_pos;
+#endif
 varying vec3 v_normal;
 // Where the point falls in the light-depth map, moved towards the light so
 // that the map (drawn from a coarser proxy, in texels) does not shadow the
@@ -105,7 +109,9 @@ void main()
     v_uv = a_uv;
 #endif
 #endif
+#if !(JD_FULL && !JD_WIDE_ONLY)
     v_pos = a_position;
+#endif
     v_normal = a_normal;
     gl_Position = u_mvp * vec4(a_position, 1.0);
     vec4 sp = u_light_tex * vec4(a_position, 1.0);
@@ -118,6 +124,7 @@ void main()
     vec3 vf = normalize(u_eye - a_position);
     if (dot(nf, vf) < 0.0) nf = -nf;
     float ndl_v = max(dot(nf, u_light_dir), 0.0);
+    v_view = vf;
     v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_f0), jd_fresnel_tc(dot(nf, vf), u_f0));
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
