@@ -159,7 +159,20 @@ void main()
     gl_FragColor = vec4(0.5 * translucency(), 1.0);
 #else
     float ndl = max(dot(n, u_light_dir), 0.0);
+#if JD_WIDE_ONLY || JD_SPREAD || (JD_TRANSLUCENT && JD_ALBEDO)
     float vis = ndl > 0.0 ? jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy) : 0.0;
+#else
+    // The shadow test without a branch round it: what vis multiplies is
+    // already nothing where the surface faces away from the light (ndl, the
+    // highlight's own test; full's per-vertex n.l Ft, which reaches 0 at
+    // the terminator). Branchless, lima took 3 instruction words fewer,
+    // Midgard 3-11 bundles, Adreno 3xx 20-60 instructions, and VideoCore IV
+    // runs it in two threads (276 instructions, where one thread cost 410
+    // cycles). Kept where it was: the summing pass and dual (lima spilled
+    // 1:19 and 2:2 without it), single with a colour (VideoCore IV back to
+    // one thread).
+    float vis = jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy);
+#endif
 #if !JD_WIDE_ONLY
     vec3 h = normalize(u_light_dir + v);
     float spec = ndl > 0.0 ? vis * pow(max(dot(n, h), 0.0), u_shading.z) : 0.0;
