@@ -240,8 +240,10 @@ void main()
     // reciprocal and a square root were two (lima's one scalar unit for
     // them took 3 instruction words more). Below 2^-14 (fp16's least
     // normal) the root's argument is held there: the colours below linear
-    // 6e-5 come out up to half a display step darker.
-    gl_FragColor = vec4(min(col * inversesqrt(max(col * (1.0 + 0.15 * col), 6.1035e-5)), 1.0), 1.0);
+    // 6e-5 come out up to half a display step darker. Above 1 the RGBA8
+    // target clamps, as GLES 2.0 has every fixed-point colour buffer do
+    // (an explicit min cost VideoCore IV and Adreno 4 instructions).
+    gl_FragColor = vec4(col * inversesqrt(max(col * (1.0 + 0.15 * col), 6.1035e-5)), 1.0);
 #endif
 #endif
 }
