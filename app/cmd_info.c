@@ -200,7 +200,8 @@ int jd_cmd_info(int argc, char **argv)
                                     : fp16 == 0 ? "32 bits (a canary shader says so: fp16 is not exercised here; llvmpipe "
                                                   "lowers mediump only on CPUs with F16C)"
                                                 : "unknown (the canary shader gave neither answer: a driver that draws nothing, or none)");
-    if (c.utgard) printf("                   Mali-400/450 recognised by name: fp16 fragments, mediump packing\n");
+    if (c.utgard) printf("                   Mali-400/450 (Utgard) recognised by %s: fp16 fragments, mediump packing\n",
+                         c.profile[0] ? "profile" : "name");
     if (c.vivante) printf("                   Vivante GC%d recognised by name\n", c.vivante);
     if (c.adreno) printf("                   Adreno %d recognised by name (Mesa's FD307 is the Adreno 306)\n", c.adreno);
     if (c.max_program_instructions) print_program_limit(&c);

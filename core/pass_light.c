@@ -134,8 +134,46 @@ static void diffuse_step(jd_renderer *r, const diff_prog *p, const target *from,
     glBindTexture(GL_TEXTURE_2D, from->tex);
     jdr_draw_quad_into(r, to, what, from);
     jdr_counted_read(r, &r->light, 1); /* the reference depths */
-    jdr_counted_trips(r, box ? (box > 1 ? box * box / 2 : 1) : 2 * taps + 1);
+    /* Built with its trips unrolled, the program's own count holds them all. */
+    jdr_counted_trips(r, p->trips ? 1 : box ? (box > 1 ? box * box / 2 : 1) : 2 * taps + 1);
 }
+
+/* Level k's blur (both directions): its taps a side, their spacing in
+ * source texels and their Gaussian's sigma in taps. Level k is level k-1
+ * blurred by the Gaussian whose variance brings it to sigma_k = 2^k
+ * first-level texels (variances add); level 1 blurs the squares, whose
+ * own variance is a box's. The same for every frame of a renderer: the
+ * programs are built for its trip count (render_program.c). */
+int jdr_diffusion_taps(const jd_renderer *r, int k, float *step, float *st)
+{
+    int box = r->d.light_map_size / r->d.diffusion_size;
+    /* The square's variance in level texels (a box of n: (n^2 - 1) / 12 n^2). */
+    float prev = k == 0 ? sqrtf((float)(box * box - 1) / (12.0f * (float)(box * box))) : (float)(1 << (k - 1));
+    float sigma = (float)(1 << k), inc = sqrtf(sigma * sigma - prev * prev);
+    /* First-level texels per source texel: texture k has 2^((k+1)/2) of
+     * them per texel (1, 2, 2, 4, 4); level 1 reads the squares. */
+    float per_src = k == 0 ? 1.0f : (float)(1 << (k / 2));
+    float sig = inc / per_src; /* in source texels, also tmp's rows */
+    /* The first level's blur reads the squares, sharp at their texels:
+     * taps half a sigma (at least a texel) apart. Later levels read a
+     * level already blurred by sigma_(k-1), at least 1/sqrt(3) of this
+     * step's increment: taps a sigma apart (3 a side, not 6) sample it
+     * without a ripple (the Gaussian's alias at that spacing is
+     * exp(-2 pi^2 / 3), 0.1%), at half the cost. */
+    float spacing = k == 0 ? sig * 3.0f / DIFF_TAPS : sig;
+    *step = fmaxf(spacing, 1.0f);
+    *st = sig / *step;
+    /* Taps out to 2 sigma, their Gaussian widened until the five taps'
+     * variance is the step's (matched_sigma), so that the levels'
+     * widths stay those the profile's fit assumes. Out to 3 sigma (7
+     * taps, 2 loop trips more a pass) the table and the flicker came
+     * out the same (docs/frame-cost.md) for a quarter more of the
+     * diffusion's cost. */
+    int taps = (int)fminf(ceilf(2.0f * *st), (float)DIFF_TAPS);
+    *st = matched_sigma(*st, taps);
+    return taps;
+}
+
 
 /* The full mode's light-space levels: level k is level k-1 blurred by the
  * Gaussian whose variance brings it to sigma_k (variances add), so every
@@ -159,12 +197,8 @@ void jdr_pass_diffusion(jd_renderer *r, const jd_scene *s, const frame_params *f
      * across and 2 in depth, so units of width and depth are alike. */
     float texel = 1.0f / (float)r->d.diffusion_size, map_texel = 1.0f / (float)r->d.light_map_size;
     int box = r->d.light_map_size / r->d.diffusion_size;
-    /* The square's variance in level texels (a box of n: (n^2 - 1) / 12 n^2). */
-    float prev = sqrtf((float)(box * box - 1) / (12.0f * (float)(box * box)));
     for (int k = 0; k < r->diff_levels; k++) {
         float sigma = (float)(1 << k);
-        float inc = sqrtf(sigma * sigma - prev * prev);
-        prev = sigma;
         target *dst = &r->diff_lv[k], *tmp = &r->diff_tmp;
         /* Light within 1.5 sigma (and two map texels) of a texel's own
          * surface in depth is that surface's; the rest came from elsewhere. */
@@ -173,25 +207,8 @@ void jdr_pass_diffusion(jd_renderer *r, const jd_scene *s, const frame_params *f
             diffuse_step(r, &r->diff_first, &r->light, dst, 1.0f / (float)r->light.tw, 1.0f / (float)r->light.th, 0,
                          0.0f, box, near, "diffusion-1box");
         const target *src = k == 0 ? dst : &r->diff_lv[k - 1];
-        /* First-level texels per source texel. */
-        float per_src = k == 0 ? 1.0f : (float)(1 << (k / 2));
-        float sig = inc / per_src; /* in source texels, also tmp's rows */
-        /* The first level's blur reads the squares, sharp at their texels:
-         * taps half a sigma (at least a texel) apart. Later levels read a
-         * level already blurred by sigma_(k-1), at least 1/sqrt(3) of this
-         * step's increment: taps a sigma apart (3 a side, not 6) sample it
-         * without a ripple (the Gaussian's alias at that spacing is
-         * exp(-2 pi^2 / 3), 0.1%), at half the cost. */
-        float spacing = k == 0 ? sig * 3.0f / DIFF_TAPS : sig;
-        float step = fmaxf(spacing, 1.0f), st = sig / step;
-        /* Taps out to 2 sigma, their Gaussian widened until the five taps'
-         * variance is the step's (matched_sigma), so that the levels'
-         * widths stay those the profile's fit assumes. Out to 3 sigma (7
-         * taps, 2 loop trips more a pass) the table and the flicker came
-         * out the same (docs/frame-cost.md) for a quarter more of the
-         * diffusion's cost. */
-        int taps = (int)fminf(ceilf(2.0f * st), (float)DIFF_TAPS);
-        st = matched_sigma(st, taps);
+        float step, st;
+        int taps = jdr_diffusion_taps(r, k, &step, &st);
         tmp->w = dst->w;
         tmp->h = src->h;
         char what[24];

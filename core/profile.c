@@ -71,6 +71,7 @@ void jd_profile_apply(const jd_profile *p, jd_gl_caps *c)
     c->ext_standard_derivatives = 0;
     /* The board's GPU itself: what recognising it by name would set. */
     if (p->small_register_file) c->small_register_file = 1;
+    if (!strcmp(p->name, "mali400")) c->utgard = 1; /* as the renderer string "Mali-400" would */
     if (p->max_program_instructions &&
         (!c->max_program_instructions || c->max_program_instructions > p->max_program_instructions))
         c->max_program_instructions = p->max_program_instructions;

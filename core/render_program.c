@@ -110,12 +110,45 @@ static void shade_locations(shade_prog *p)
     p->slab_scale_v = glGetUniformLocation(id, "u_slab_scale_v");
 }
 
+/* The constant trip count the diffusion program is built with, or 0 for
+ * its loop's count as a uniform. Every GPU jade's compiler table covers
+ * runs these few trips shorter unrolled (VideoCore IV in two threads where
+ * the loop held it to one: the blur at 5 trips 372 instructions a fragment
+ * where the loop cost 1719 cycles; Adreno 3xx 455 -> 257; Midgard 152 -> 70
+ * bundles; Vivante 210 -> 121) but Utgard, whose six registers spill it (lima 7:32 at 5 trips).
+ * The squares (8 trips at the default sizes) stay a loop on Vivante
+ * GC400-GC2000 too: unrolled they pass its 256-instruction limit. More
+ * than 8 trips (other light-map and diffusion sizes) stay a loop. */
+static int diffusion_trips(const jd_renderer *r, int first)
+{
+    const jd_gl_caps *c = r->d.caps;
+    if (c->utgard) return 0;
+    int trips;
+    if (first) {
+        int box = r->d.light_map_size / r->d.diffusion_size;
+        if (c->max_program_instructions) return 0;
+        trips = box > 1 ? box * box / 2 : 1;
+    } else {
+        float step, st;
+        int taps = jdr_diffusion_taps(r, 0, &step, &st);
+        for (int k = 1; k < DIFF_TEXTURES; k++)
+            if (jdr_diffusion_taps(r, k, &step, &st) != taps) return 0; /* one program serves every level */
+        trips = 2 * taps + 1;
+    }
+    return trips <= 8 ? trips : 0;
+}
+
 static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_error *err)
 {
-    char def[128];
+    char def[160];
+    p->trips = diffusion_trips(r, first);
     /* The first step gathers light-map texels in squares (JD_BOX). */
     snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_TAPS %d\n#define JD_FIRST %d\n#define JD_BOX %d\n",
              r->highp, DIFF_TAPS, first, first);
+    if (p->trips) {
+        size_t n = strlen(def);
+        snprintf(def + n, sizeof def - n, "#define JD_TRIPS %d\n", p->trips);
+    }
     jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/diffuse_blur.frag", def, quad_attribs, &p->id, err);
     if (res) return res;
     p->src = glGetUniformLocation(p->id, "u_src");

@@ -63,6 +63,7 @@ typedef struct shade_prog {
 typedef struct diff_prog {
     GLuint id;
     GLint src, ref, ref_scale, step, taps, w, uv_scale, near, box;
+    int trips; /* built with this constant trip count (JD_TRIPS), or 0: the loop's count is a uniform */
 } diff_prog;
 
 #define TAIL_SIZE 256
@@ -251,6 +252,7 @@ jd_pass_count *jdr_counted_draw(jd_renderer *r);
 void jdr_counted_quad(jd_renderer *r, double fragments, double vertices, double triangles);
 void jdr_counted_read(jd_renderer *r, const target *t, double layers);
 void jdr_counted_trips(jd_renderer *r, double trips);
+int jdr_diffusion_taps(const jd_renderer *r, int k, float *step, float *st);
 void jdr_counted_open(jd_renderer *r, const char *what, int w, int h);
 
 /* The frame goes to `scene` first, then through the pass after it:

@@ -80,6 +80,10 @@ void main()
     // instructions); one tap per pass round the loop, 0 spills and 69.
 #ifdef JD_UNROLL
     for (int i = 0; i < JD_UNROLL; i++) { // the device-compiler tool: the cost of one trip more
+#elif defined(JD_TRIPS)
+    // The renderer's trip count, constant, where the GPU runs the loop
+    // shorter unrolled (every one but Utgard: render_program.c).
+    for (int i = 0; i < JD_TRIPS; i++) {
 #elif JD_BOX
     for (int i = 0; i <= 64; i++) {
         if (i >= u_taps) break;
