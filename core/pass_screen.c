@@ -23,7 +23,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     if (p->depth_v >= 0) glUniform1i(p->depth_v, 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, r->light.tex);
-    if (p->wl >= 0 || p->lw >= 0) { /* full: the local weight, the levels (either may be compiled out) */
+    if (p->local_x >= 0 || p->lw >= 0) { /* full: the local weight, the levels (either may be compiled out) */
         float lw[DIFF_LEVELS][3], ls[6] = {0}, wl[3] = {0};
         const jd_diffusion_fit *fit = &r->fit;
         for (int c = 0; c < 3; c++)
@@ -37,7 +37,23 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         ls[5] = 1.0f / (float)r->d.diffusion_size; /* the spare slot: the first level's texel size */
         glUniform3fv(p->lw, DIFF_LEVELS, &lw[0][0]);
         glUniform3fv(p->ls, 2, ls);
-        glUniform3fv(p->wl, 1, wl);
+        if (p->local_x >= 0) {
+            /* The picture's constant factors, one product each: exposure,
+             * light colour, Rd's local weight, the ambient's albedo, the
+             * highlight's strength; the levels' sum read from the
+             * half-resolution buffer comes halved (shade.frag). */
+            float e = f->shading[3], wide = r->vertex_diffusion ? 1.0f : 2.0f, amb[3], loc[3], wid[3], spec[3];
+            for (int c = 0; c < 3; c++) {
+                amb[c] = f->albedo[c] * f->shading[0] * e;
+                loc[c] = f->light_color[c] * wl[c] * e;
+                wid[c] = f->light_color[c] * wide * e;
+                spec[c] = f->light_color[c] * f->shading[1] * e;
+            }
+            glUniform3fv(p->amb_x, 1, amb);
+            glUniform3fv(p->local_x, 1, loc);
+            glUniform3fv(p->wide_x, 1, wid);
+            glUniform3fv(p->spec_x, 1, spec);
+        }
         glUniform4fv(p->light_map_v, 1, f->light_map);
         glUniform3f(p->light_dir_v, f->light_dir.x, f->light_dir.y, f->light_dir.z);
         if (p->slab >= 0 || p->slab_v >= 0) { /* unit 6: the wide buffer's, which these programs do not read */

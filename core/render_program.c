@@ -103,7 +103,10 @@ static void shade_locations(shade_prog *p)
     p->albedo_map = glGetUniformLocation(id, "u_albedo_map");
     p->albedo_bias = glGetUniformLocation(id, "u_albedo_bias");
     p->ls = glGetUniformLocation(id, "u_ls");
-    p->wl = glGetUniformLocation(id, "u_wl");
+    p->amb_x = glGetUniformLocation(id, "u_amb_x");
+    p->local_x = glGetUniformLocation(id, "u_local_x");
+    p->wide_x = glGetUniformLocation(id, "u_wide_x");
+    p->spec_x = glGetUniformLocation(id, "u_spec_x");
     p->slab = glGetUniformLocation(id, "u_slab");
     p->slab_v = glGetUniformLocation(id, "u_slab_v");
     p->slab_scale = glGetUniformLocation(id, "u_slab_scale");

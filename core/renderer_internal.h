@@ -53,7 +53,8 @@ typedef struct shade_prog {
     GLint mvp, light_tex, eye, irr, box_min, box_max, inv_eta, inset;
     GLint light_dir, albedo, light_color, shading, depth, tail, depth_v, tail_v, f0, a0_scale;
     GLint spread, inv_viewport, w0, wide_scale;
-    GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls, wl;
+    GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls;
+    GLint amb_x, local_x, wide_x, spec_x; /* full's constant factors (shade.frag) */
     GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
     GLint albedo_norm, albedo_map, albedo_bias;
     GLint slab, slab_v, slab_scale, slab_scale_v;

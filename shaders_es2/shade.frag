@@ -38,7 +38,15 @@ uniform sampler2D u_spread;  // sqrt((w1 A1 + w2 A2) / 2), alpha = covered
 uniform vec3 u_w0;
 #endif
 #if JD_FULL
-uniform vec3 u_wl;           // Rd's weight on the Gaussians finer than a level texel
+#if !JD_WIDE_ONLY
+// The picture's constant factors, multiplied together on the CPU
+// (pass_screen.c): lima's compiler multiplied the uniforms in every
+// fragment (4 instruction words).
+uniform vec3 u_amb_x;        // Rd_total x ambient x exposure
+uniform vec3 u_local_x;      // light colour x Rd's weight on the Gaussians finer than a level texel x exposure
+uniform vec3 u_wide_x;       // light colour x exposure (x 2 where the levels' sum is read halved)
+uniform vec3 u_spec_x;       // light colour x specular x exposure
+#endif
 #if !JD_WIDE_ONLY
 varying vec2 v_fresnel;      // n.l Ft(l)/c and Ft(v)/c, per vertex (mesh.vert)
 #endif
@@ -185,7 +193,7 @@ void main()
     // covered neighbours' light, not the empty background's.
     vec4 wb = texture2DProj(u_wide, v_screen);
     vec3 we = wb.a > 0.01 ? wb.rgb / wb.a : vec3(0.0);
-    vec3 wide = 2.0 * we * we;
+    vec3 wide = we * we;
 #else
     float lit = jd_lit_ramp(dot(n, u_light_dir), vis);
     vec3 wide = jd_diffused(u_lv0, u_lv1, u_lv2, u_lv3, u_lv4, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map.w, lit);
@@ -199,11 +207,11 @@ void main()
     gl_FragColor = vec4(sqrt(clamp(0.5 * wide, 0.0, 1.0)), 1.0);
     return;
 #else
-    vec3 mo = u_albedo * u_shading.x + u_light_color * (u_wl * (v_fresnel.x * vis) + wide);
+    vec3 mo = u_amb_x + u_local_x * (v_fresnel.x * vis) + u_wide_x * wide;
 #if JD_ALBEDO
     mo *= alb;
 #endif
-    vec3 col = v_fresnel.y * mo + u_shading.y * spec * u_light_color;
+    vec3 col = v_fresnel.y * mo + spec * u_spec_x;
 #endif
 #else
 #if JD_ALBEDO
@@ -233,7 +241,9 @@ void main()
     col += a0 * smoothstep(0.0, 0.25, dot(n, v));
 #endif
 #if !JD_WIDE_ONLY
+#if !JD_FULL
     col *= u_shading.w;
+#endif
     // Reinhard-style shoulder, then display gamma 2.0 (a sqrt is cheaper than
     // pow on every GPU jade targets): sqrt(c / (1 + 0.15 c)), written as
     // c / sqrt(c (1 + 0.15 c)), one inverse square root a channel where a
