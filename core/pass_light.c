@@ -147,7 +147,6 @@ int jdr_diffusion_taps(const jd_renderer *r, int k, float *step, float *st)
     return (int)fminf(ceilf(2.0f * *st), (float)DIFF_TAPS);
 }
 
-
 /* The full mode's light-space levels: level k is level k-1 blurred by the
  * Gaussian whose variance brings it to sigma_k (variances add), so every
  * step is short. Level 1 comes from the light-depth map: its texels

@@ -46,8 +46,6 @@ uniform vec3 u_amb_x;        // Rd_total x ambient x exposure
 uniform vec3 u_local_x;      // light colour x Rd's weight on the Gaussians finer than a level texel x exposure
 uniform vec3 u_wide_x;       // light colour x exposure (x 2 where the levels' sum is read halved)
 uniform vec3 u_spec_x;       // light colour x specular x exposure
-#endif
-#if !JD_WIDE_ONLY
 varying vec2 v_fresnel;      // n.l Ft(l)/c and Ft(v)/c, per vertex (mesh.vert)
 #endif
 #if JD_VERTEX_DIFFUSION
@@ -175,8 +173,7 @@ void main()
     // highlight's own test; full's per-vertex n.l Ft, which reaches 0 at
     // the terminator). Branchless, lima took 3 instruction words fewer,
     // Midgard 3-11 bundles, Adreno 3xx 20-60 instructions, and VideoCore IV
-    // runs it in two threads (276 instructions, where one thread cost 410
-    // cycles). Kept where it was: the summing pass and dual (lima spilled
+    // runs it in two threads (where one thread cost 410 cycles). Kept where it was: the summing pass and dual (lima spilled
     // 1:19 and 2:2 without it), single with a colour (VideoCore IV back to
     // one thread).
     float vis = jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy);
