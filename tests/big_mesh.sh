@@ -6,7 +6,7 @@
 # limits change nothing else in full mode here); the mali400 and generic
 # profiles render it; the default memory budget grows to hold it. The
 # same with a colour texture: the chunks carry its coordinates and colours.
-jade=$1
+jade=$1 imgcmp=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 pass=0 fail=0
@@ -55,10 +55,17 @@ for prof in device vc4; do
         --out "$tmp/tex_$prof.png" >"$tmp/out" 2>&1 && grep -q "colour texture" "$tmp/out"; then :
     else fail=$((fail + 1)); echo "FAIL textured $prof: $(cat "$tmp/out")"; fi
 done
+# Byte for byte on llvmpipe. The vc4 profile's textured program is not the
+# device's (without the light through thin parts, above), and an NVIDIA
+# GPU's compiler rounds the two differently: held there within a display
+# step or so, where a seam would put a line of pixels far off.
 if [ -f "$tmp/tex_vc4.png" ] && cmp -s "$tmp/tex_device.png" "$tmp/tex_vc4.png"; then
     pass=$((pass + 1)); echo "ok   textured: 16-bit chunks (vc4) give the 32-bit picture byte for byte"
+elif [ -f "$tmp/tex_vc4.png" ] && "$imgcmp" "$tmp/tex_vc4.png" "$tmp/tex_device.png" --max-rmse 0.5 --max-bad-frac 0.0005 \
+        --bad-threshold 8 >"$tmp/cmp" 2>&1; then
+    pass=$((pass + 1)); echo "ok   textured: 16-bit chunks (vc4) give the 32-bit picture, no seam: $(tail -1 "$tmp/cmp")"
 else
-    fail=$((fail + 1)); echo "FAIL the textured chunked picture differs"
+    fail=$((fail + 1)); echo "FAIL the textured chunked picture differs: $(tail -1 "$tmp/cmp" 2>/dev/null)"
 fi
 echo "big mesh: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

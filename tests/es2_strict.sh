@@ -7,6 +7,11 @@ masked="-GL_OES_element_index_uint -GL_EXT_disjoint_timer_query -GL_OES_texture_
 -GL_OES_texture_float -GL_OES_standard_derivatives -GL_OES_rgb8_rgba8 -GL_OES_packed_depth_stencil"
 masked=$(echo $masked)
 fail=0 pass=0
+# The forcing is Mesa's (its environment overrides): another driver (an
+# NVIDIA GPU's gives an ES 3.2 context for jade's ES 2.0 request, as EGL
+# allows) cannot be forced, and the test says so and skips.
+ver=$("$jade" info | grep GL_VERSION)
+case "$ver" in *Mesa*) ;; *) echo "skipped: not Mesa ($ver), whose overrides force ES 2.0"; exit 77 ;; esac
 "$jade" render --size 160x160 --sheet "$out/es_normal.png" >/dev/null || fail=$((fail + 1))
 ver=$(MESA_GLES_VERSION_OVERRIDE=2.0 "$jade" info | grep GL_VERSION)
 echo "forced: $ver"

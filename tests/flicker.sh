@@ -7,7 +7,11 @@
 # smoothly and leaves little of it; a pixel that pops leaves it whole.
 # The reference's jerk is what smooth looks like. The bound holds full's
 # figure today (docs/quality.md: it flickers more than the reference) with
-# a tenth to spare, so that it cannot grow unseen.
+# a tenth to spare, so that it cannot grow unseen. Drawn without the
+# anti-aliasing pass, as the boards with multisampling draw the object's
+# inside (the pass, which only GPUs without multisampling run, took full's
+# jerk from 0.0151 to 0.0137 on llvmpipe; an NVIDIA GPU under 4x
+# multisampling gave 0.0155).
 jade=$1 measure=$2
 . "$(dirname "$0")/harness.sh"
 scene="--size 128x128 --specular 0 --light-elevation 35"
@@ -19,7 +23,7 @@ while [ $i -lt 60 ]; do
         { bad "jade reference did not run (azimuth $az)"; break; }
     for m in none full; do
         # shellcheck disable=SC2086
-        "$jade" render $scene --mode $m --light-azimuth $az --out "$tmp/$m$i.png" >/dev/null 2>&1 ||
+        "$jade" render $scene --mode $m --antialias off --light-azimuth $az --out "$tmp/$m$i.png" >/dev/null 2>&1 ||
             { bad "jade render --mode $m did not run (azimuth $az)"; break; }
     done
     i=$((i + 1))
@@ -33,6 +37,6 @@ ref=$(jerk ref) none=$(jerk none) full=$(jerk full)
 echo "jerk (RMS of the second difference between frames, linear luminance): reference $ref, none $none, full $full"
 if awk -v r="$ref" -v n="$none" 'BEGIN { exit !(r != "" && r < n) }'; then ok "the reference is smoother than none ($ref < $none)"
 else bad "the reference ($ref) is not smoother than none ($none): the measure sees nothing"; fi
-if awk -v f="$full" 'BEGIN { exit !(f != "" && f <= 0.0151) }'; then ok "full's jerk $full <= 0.0151 (measured 0.0137)"
-else bad "full's jerk $full, over 0.0151 (measured 0.0137; the reference $ref)"; fi
+if awk -v f="$full" 'BEGIN { exit !(f != "" && f <= 0.0166) }'; then ok "full's jerk $full <= 0.0166 (measured 0.0151)"
+else bad "full's jerk $full, over 0.0166 (measured 0.0151; the reference $ref)"; fi
 finish flicker
