@@ -155,7 +155,11 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
     if (!mesh_path(s, o, cmd)) return 0;
     jd_platform_desc pd = {.kind = o->platform ? o->platform : "headless", .width = o->width, .height = o->height,
                            .drm_device = o->drm_device, .connector = o->connector, .display_mode = o->display_mode,
-                           .single_sample = o->rdesc.antialias == JD_AA_OFF, .fullscreen = o->fullscreen,
+                           /* post asks for the pass alone: a multisampled
+                            * target under it would anti-alias twice (and on
+                            * an immediate-mode GPU pay the samples' memory
+                            * traffic for nothing). */
+                           .single_sample = o->rdesc.antialias != JD_AA_AUTO, .fullscreen = o->fullscreen,
                            .atomic = o->atomic};
     /* No display, no point decoding: say so at once (or, with
      * --wait-display, wait for one: systemd may start the kiosk before the
