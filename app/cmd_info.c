@@ -195,11 +195,15 @@ int jd_cmd_info(int argc, char **argv)
     printf("fragment highp     %s (precision %d bits, range 2^%d)\n", c.frag_highp_precision >= 23 ? "yes" : "no",
            c.frag_highp_precision, c.frag_highp_range);
     printf("fragment mediump   precision %d bits, range 2^%d\n", c.frag_mediump_precision, c.frag_mediump_range);
-    int fp16 = jd_gl_mediump_is_fp16();
-    printf("mediump arithmetic %s\n", fp16 == 1 ? "16 bits (a canary shader says so)"
-                                    : fp16 == 0 ? "32 bits (a canary shader says so: fp16 is not exercised here; llvmpipe "
-                                                  "lowers mediump only on CPUs with F16C)"
-                                                : "unknown (the canary shader gave neither answer: a driver that draws nothing, or none)");
+    unsigned char px[4];
+    int fp16 = jd_gl_mediump_canary(px);
+    if (fp16 < 0)
+        printf("mediump arithmetic unknown (the canary shader read back red %d, alpha %d: a driver that draws "
+               "nothing)\n", px[0], px[3]);
+    else
+        printf("mediump arithmetic %s (red %d)\n", fp16 == 1 ? "16 bits (a canary shader says so)"
+                                        : "32 bits (a canary shader says so: fp16 is not exercised here; llvmpipe "
+                                          "lowers mediump only on CPUs with F16C)", px[0]);
     if (c.utgard) printf("                   Mali-400/450 (Utgard) recognised by %s: fp16 fragments, mediump packing\n",
                          c.profile[0] ? "profile" : "name");
     if (c.vivante) printf("                   Vivante GC%d recognised by name\n", c.vivante);

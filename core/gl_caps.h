@@ -53,6 +53,9 @@ int jd_extension_listed(const char *list, const char *name);
  * llvmpipe on a CPU without F16C), -1 could not tell. Draws into a 4x4
  * target and reads one pixel back: for start-up and tests, never a frame. */
 int jd_gl_mediump_is_fp16(void);
+/* The same, with the canary pixel's bytes (RGBA; red 191 at 32 bits, 64,
+ * 0 or 255 at 16 as the driver rounds). */
+int jd_gl_mediump_canary(unsigned char rgba[4]);
 
 /* How many textures, buffers, framebuffers and renderbuffers the current
  * context holds: every name below the one a new object would get, asked

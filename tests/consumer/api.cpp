@@ -37,6 +37,7 @@ int main()
         FN(jd_gl_caps_query),
         FN(jd_gl_caps_recognise),
         FN(jd_gl_has_extension),
+        FN(jd_gl_mediump_canary),
         FN(jd_gl_mediump_is_fp16),
         FN(jd_gl_probe_names),
         FN(jd_m4_identity),
