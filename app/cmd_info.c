@@ -201,9 +201,8 @@ int jd_cmd_info(int argc, char **argv)
         printf("mediump arithmetic unknown (the canary shader read back red %d, alpha %d: a driver that draws "
                "nothing)\n", px[0], px[3]);
     else
-        printf("mediump arithmetic %s (red %d)\n", fp16 == 1 ? "16 bits (a canary shader says so)"
-                                        : "32 bits (a canary shader says so: fp16 is not exercised here; llvmpipe "
-                                          "lowers mediump only on CPUs with F16C)", px[0]);
+        printf("mediump arithmetic %s (a canary shader says so, red %d%s)\n", fp16 == 1 ? "16 bits" : "32 bits", px[0],
+               fp16 == 1 ? "" : ": fp16 is not exercised here; llvmpipe lowers mediump only on CPUs with F16C");
     if (c.utgard) printf("                   Mali-400/450 (Utgard) recognised by %s: fp16 fragments, mediump packing\n",
                          c.profile[0] ? "profile" : "name");
     if (c.vivante) printf("                   Vivante GC%d recognised by name\n", c.vivante);

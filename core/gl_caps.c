@@ -127,10 +127,10 @@ void jd_gl_probe_names(jd_gl_names *out)
  * from a uniform, so no compiler can fold it: 1e-4 at fp32 (to a part in
  * 1e3); at fp16, 1 + 1e-4 and k * 0.001 each round to a multiple of 2^-11
  * or 2^-10, and x to a multiple of about 5e-4, never near 1e-4: llvmpipe
- * gives 0, an NVIDIA H100 about 1e-3 (its rounding or order differs).
+ * gives 0, an NVIDIA H100 1.5e-4 or more (red 255).
  * Written as x * 5000 + 0.25 into RGBA8: 32 bits 191, 16 bits 64 or,
- * clamped, 0 or 255. (A test against 1e-4 in the shader itself is folded
- * away: compilers reassociate (x - 1) - 1e-4 into x - 1.0001.) */
+ * clamped, 0 or 255. (x less 1e-4 in the shader itself read as fp32 on
+ * llvmpipe's fp16: a compiler may fold (x - 1) - 1e-4 into x - 1.0001.) */
 static const char canary_vs[] =
     "#version 100\nattribute vec2 a_corner;\nvarying mediump float v_v;\n"
     "void main() { v_v = 1e-4; gl_Position = vec4(a_corner, 0.0, 1.0); }\n";
