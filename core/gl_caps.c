@@ -199,9 +199,9 @@ int jd_gl_mediump_canary(unsigned char rgba[4])
     glDeleteTextures(1, &tex);
     glUseProgram(0);
     glDeleteProgram(p);
-    int linked = glGetError() == GL_NO_ERROR;
+    int gl_ok = glGetError() == GL_NO_ERROR;
     /* A driver that draws nothing (Mesa's drm-shims read back zeros)
      * answers nothing. */
-    if (!linked || px[3] != 255) return -1;
+    if (!gl_ok || px[3] != 255) return -1;
     return px[0] < 175 || px[0] > 207;
 }
