@@ -84,7 +84,7 @@ static const opt table[] = {
     {"--ambient", T_FLOAT, OFF(scene.ambient), 0, 100, S, "X          irradiance from every direction, unshadowed, in the light's units [0.06]"},
     {"--specular", T_FLOAT, OFF(scene.specular), 0, 100, S, "X          the highlight's strength (0: none) [0.2]"},
     {"--cube-size", T_INT, OFF(rdesc.cube_size), 8, 256, R | B, "N          capture face size, multiple of 8 [64]"},
-    {"--light-map", T_INT, OFF(rdesc.light_map_size), 16, 2048, R | B, "N          light depth map size [256]"},
+    {"--light-map", T_INT, OFF(rdesc.light_map_size), 16, 2048, R | B, "N          light depth map size, a power of two [256]"},
     {"--proxy-cells", T_INT, OFF(rdesc.proxy_cells), 4, 64, R | B, "N          proxy mesh grid [40]"},
     {"--spread-divisor", T_INT, OFF(rdesc.spread_divisor), 1, 16, R | B, "N          spread layers at 1/N resolution [8]"},
     {"--diffusion-size", T_INT, OFF(rdesc.diffusion_size), 16, 2048, R | B, "N          full mode: first light-space diffusion level, texels per side [light map / 4]"},

@@ -75,6 +75,11 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     r->sh_mid = blocks > 8 && blocks % 8 == 0 ? blocks / 8 : 1;
     if (d->light_map_size < 16 || d->light_map_size > 2048)
         return jd_fail(err, JD_ERR_ARG, "light map size %d must be 16..2048", d->light_map_size);
+    /* The shading reads the light map over the whole texture: a size that
+     * is not a power of two would leave part of the texture undrawn and
+     * put every shadow in the wrong place. */
+    if (d->light_map_size & (d->light_map_size - 1))
+        return jd_fail(err, JD_ERR_ARG, "light map size %d must be a power of two", d->light_map_size);
     if (d->diffusion_size < 16 || d->diffusion_size > d->light_map_size)
         return jd_fail(err, JD_ERR_ARG, "diffusion size %d must be 16..%d (the light map size)", d->diffusion_size,
                        d->light_map_size);
