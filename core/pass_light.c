@@ -190,3 +190,65 @@ void jdr_pass_diffusion(jd_renderer *r, const jd_scene *s, const frame_params *f
         diffuse_step(r, &r->diff_next, tmp, dst, 0.0f, step / (float)tmp->th, taps, st, 0, near, what);
     }
 }
+
+/* full's exponential shadow map's exponent per light-depth unit: 0.35 per
+ * texel of depth (light.glsl, jd_soft_lit). */
+float jdr_soft_c(const jd_renderer *r)
+{
+    return 0.35f * (float)r->d.light_map_size;
+}
+
+/* The texels of a light-space target of n x n that the object's bounding
+ * box covers, and `margin` more each way: x, y, w, h. */
+static void object_rect(const jd_renderer *r, const frame_params *f, int n, int margin, int rect[4])
+{
+    float lo[2] = {1.0f, 1.0f}, hi[2] = {0.0f, 0.0f};
+    for (int i = 0; i < 8; i++) {
+        jd_vec3 p = jd_v3(i & 1 ? r->box_max.x : r->box_min.x, i & 2 ? r->box_max.y : r->box_min.y,
+                          i & 4 ? r->box_max.z : r->box_min.z);
+        jd_vec3 q = jd_m4_point(f->light_tex, p);
+        lo[0] = fminf(lo[0], q.x), hi[0] = fmaxf(hi[0], q.x);
+        lo[1] = fminf(lo[1], q.y), hi[1] = fmaxf(hi[1], q.y);
+    }
+    int x0 = (int)floorf(lo[0] * (float)n) - margin, y0 = (int)floorf(lo[1] * (float)n) - margin;
+    int x1 = (int)ceilf(hi[0] * (float)n) + margin, y1 = (int)ceilf(hi[1] * (float)n) + margin;
+    x0 = x0 < 0 ? 0 : x0, y0 = y0 < 0 ? 0 : y0;
+    x1 = x1 > n ? n : x1, y1 = y1 > n ? n : y1;
+    rect[0] = x0, rect[1] = y0;
+    rect[2] = x1 > x0 ? x1 - x0 : 0, rect[3] = y1 > y0 ? y1 - y0 : 0;
+}
+
+/* full's shadow test, made once for the light: the light map's depths as
+ * an exponential shadow map blurred by a Gaussian of 1.2 texels
+ * (soft_shadow.frag), across into soft_tmp, then down into soft, each pass
+ * halving the resolution in its direction. The shading reads it
+ * bilinearly where the other modes read the light map. */
+void jdr_pass_soft_shadow(jd_renderer *r, const jd_scene *s, const frame_params *f)
+{
+    (void)s;
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    jdr_bind_quad(r);
+    glUseProgram(r->soft_prog);
+    glUniform1i(r->soft_src, 0);
+    glUniform2f(r->soft_c, jdr_soft_c(r), 1.0f / jdr_soft_c(r));
+    glUniform2f(r->soft_scale, (float)r->light.w / (float)r->light.tw, (float)r->light.h / (float)r->light.th);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform2f(r->soft_step, 1.0f / (float)r->light.tw, 0.0f);
+    glBindTexture(GL_TEXTURE_2D, r->light.tex);
+    /* Only around the object: the shading reads the map where the object
+     * is (rect, in the map's texels, with 3 to spare each way), and the
+     * second pass reads the first's rows up to 2.5 light-map texels beyond
+     * its own. */
+    int rect[4];
+    object_rect(r, f, r->soft.w, 3, rect);
+    int row0 = 2 * rect[1] - 3, row1 = 2 * (rect[1] + rect[3]) + 3;
+    row0 = row0 < 0 ? 0 : row0;
+    row1 = row1 > r->soft_tmp.h ? r->soft_tmp.h : row1;
+    const int tmp_rect[4] = {rect[0], row0, rect[2], row1 - row0};
+    jdr_draw_quad_rect(r, &r->soft_tmp, "soft-shadow-h", &r->light, tmp_rect);
+    glUniform2f(r->soft_scale, (float)r->soft_tmp.w / (float)r->soft_tmp.tw, (float)r->soft_tmp.h / (float)r->soft_tmp.th);
+    glUniform2f(r->soft_step, 0.0f, 1.0f / (float)r->soft_tmp.th);
+    glBindTexture(GL_TEXTURE_2D, r->soft_tmp.tex);
+    jdr_draw_quad_rect(r, &r->soft, "soft-shadow-v", &r->soft_tmp, rect);
+}

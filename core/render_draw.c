@@ -56,10 +56,19 @@ void jdr_use_target(jd_renderer *r, const target *t, const char *what)
 /* A quad over all of t, reading `src` (NULL: nothing counted). */
 void jdr_draw_quad_into(jd_renderer *r, const target *t, const char *what, const target *src)
 {
-    jdr_use_target(r, t, what);
+    const int all[4] = {0, 0, t->w, t->h};
+    jdr_draw_quad_rect(r, t, what, src, all);
+}
+
+void jdr_draw_quad_rect(jd_renderer *r, const target *t, const char *what, const target *src, const int rect[4])
+{
+    jdr_count_target(r, what, rect[2], rect[3]);
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glViewport(0, 0, t->w, t->h);
+    glScissor(rect[0], rect[1], rect[2], rect[3]);
     if (src) jdr_counted_read(r, src, 1);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    jdr_counted_quad(r, (double)t->w * t->h, 4, 2);
+    jdr_counted_quad(r, (double)rect[2] * rect[3], 4, 2);
 }
 
 /* glDrawElements of one of the meshes (0 the whole mesh, 1 the proxy, 2

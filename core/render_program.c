@@ -87,6 +87,7 @@ static void shade_locations(shade_prog *p)
     p->wide_scale = glGetUniformLocation(id, "u_wide_scale");
     p->w0 = glGetUniformLocation(id, "u_w0");
     p->light_map = glGetUniformLocation(id, "u_light_map");
+    p->soft_c = glGetUniformLocation(id, "u_soft_c");
     p->shadow_bias = glGetUniformLocation(id, "u_shadow_bias");
     for (int i = 0; i < DIFF_TEXTURES; i++) {
         char name[16];
@@ -318,8 +319,17 @@ static jd_result build_full(jd_renderer *r, jd_error *err)
             return res;
         shade_locations(&r->wide_prog);
     }
-    if ((res = build_diffusion(r, 1, &r->diff_first, err))) return res;
-    return build_diffusion(r, 0, &r->diff_next, err);
+    if ((res = build_diffusion(r, 1, &r->diff_first, err)) || (res = build_diffusion(r, 0, &r->diff_next, err)))
+        return res;
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n", r->highp);
+    if ((res = build(r, 3, "shaders_es2/soft_shadow.vert", "shaders_es2/soft_shadow.frag", def, quad_attribs,
+                     &r->soft_prog, err)))
+        return res;
+    r->soft_src = glGetUniformLocation(r->soft_prog, "u_src");
+    r->soft_step = glGetUniformLocation(r->soft_prog, "u_step");
+    r->soft_c = glGetUniformLocation(r->soft_prog, "u_c");
+    r->soft_scale = glGetUniformLocation(r->soft_prog, "u_uv_scale");
+    return JD_OK;
 }
 
 static jd_result build_antialias(jd_renderer *r, jd_error *err)
@@ -366,7 +376,7 @@ static int group_programs(jd_renderer *r, int g, GLuint **out)
         break;
     case GROUP_FULL:
         out[n++] = &r->shade[JD_MODE_FULL].id; out[n++] = &r->wide_prog.id; out[n++] = &r->diff_first.id;
-        out[n++] = &r->diff_next.id;
+        out[n++] = &r->diff_next.id; out[n++] = &r->soft_prog;
         break;
     default: out[n++] = &r->aa_prog; out[n++] = &r->up_prog; break;
     }

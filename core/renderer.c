@@ -75,9 +75,10 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     r->sh_mid = blocks > 8 && blocks % 8 == 0 ? blocks / 8 : 1;
     if (d->light_map_size < 16 || d->light_map_size > 2048)
         return jd_fail(err, JD_ERR_ARG, "light map size %d must be 16..2048", d->light_map_size);
-    /* The shading reads the light map over the whole texture: a size that
-     * is not a power of two would leave part of the texture undrawn and
-     * put every shadow in the wrong place. */
+    /* The shading reads the light map (and full's shadow map, half its
+     * size) over the whole texture: a size that is not a power of two would
+     * leave part of the texture undrawn and put every shadow in the wrong
+     * place. */
     if (d->light_map_size & (d->light_map_size - 1))
         return jd_fail(err, JD_ERR_ARG, "light map size %d must be a power of two", d->light_map_size);
     if (d->diffusion_size < 16 || d->diffusion_size > d->light_map_size)
@@ -126,6 +127,8 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     r->place_c = c;
     r->place_inv_r = 1.0f / radius;
     r->box_half = 0.5f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius * 1.01f;
+    r->box_min = jd_v3_scale(jd_v3_sub(m->bmin, c), r->place_inv_r);
+    r->box_max = jd_v3_scale(jd_v3_sub(m->bmax, c), r->place_inv_r);
     /* Vertex clustering moves a vertex by at most a cell's diagonal; the
      * surface between, by about half of that. */
     r->proxy_error = 0.87f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius / (float)d->proxy_cells;
@@ -179,7 +182,10 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
         (res = jdr_make_target(r, &r->spread_tmp, sw, shh, 0, 1, "spread blur", err)) ||
         (res = jdr_make_target(r, &r->spread1, sw, shh, 0, 1, "spread A1", err)) ||
         (res = jdr_make_target(r, &r->spread2, sw, shh, 0, 1, "spread A2", err)) ||
-        (res = jdr_make_target(r, &r->diff_tmp, d->diffusion_size, d->light_map_size, 0, 0, "diffusion blur", err)))
+        (res = jdr_make_target(r, &r->diff_tmp, d->diffusion_size, d->light_map_size, 0, 0, "diffusion blur", err)) ||
+        (res = jdr_make_target(r, &r->soft_tmp, d->light_map_size / 2, d->light_map_size, 0, 0, "soft shadow blur",
+                               err)) ||
+        (res = jdr_make_target(r, &r->soft, d->light_map_size / 2, d->light_map_size / 2, 0, 1, "soft shadow", err)))
         goto fail;
     if (!r->vertex_diffusion &&
         (res = jdr_make_target(r, &r->wide, (d->max_width + 1) / 2, (d->max_height + 1) / 2, 1, 1, "full's levels", err)))
@@ -205,7 +211,7 @@ void jd_renderer_destroy(jd_renderer *r)
 {
     if (!r) return;
     target *ts[] = {&r->light,   &r->atlas,   &r->sh1,      &r->sh_mid_t, &r->sh2,   &r->sh3, &r->spread0,
-                    &r->spread_tmp, &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->wide};
+                    &r->spread_tmp, &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->wide, &r->soft_tmp, &r->soft};
     for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++) jdr_free_target(ts[i]);
     for (int i = 0; i < DIFF_TEXTURES; i++) jdr_free_target(&r->diff_lv[i]);
     for (int i = 0; i < 6; i++) jdr_free_target(&r->irr[i]); /* the cube's texture goes with the first */
@@ -445,6 +451,7 @@ static const plan_step plan[] = {
     {"the dipole tail table", MODE(SINGLE) | MODE(DUAL), EVERY_FRAME, -1, NULL, jdr_update_tail},
     {"light depth", ALL_MODES, LIGHT_SPACE, JD_PASS_LIGHT_DEPTH, NULL, jdr_pass_light_depth},
     {"full's diffusion", MODE(FULL), LIGHT_SPACE, JD_PASS_DIFFUSION, NULL, jdr_pass_diffusion},
+    {"full's soft shadow", MODE(FULL), LIGHT_SPACE, JD_PASS_DIFFUSION, NULL, jdr_pass_soft_shadow},
     {"full's levels' sum", MODE(FULL), VIEW_SPACE, JD_PASS_DIFFUSION, levels_on_screen, jdr_pass_wide},
     {"the cube capture", MODE(SINGLE) | MODE(DUAL), LIGHT_SPACE, JD_PASS_CAPTURE, NULL, jdr_pass_capture},
     {"the SH projection", MODE(SINGLE) | MODE(DUAL), LIGHT_SPACE, JD_PASS_SH, NULL, jdr_pass_sh},

@@ -58,6 +58,7 @@ typedef struct shade_prog {
     GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
     GLint albedo_norm, albedo_map, albedo_bias;
     GLint slab, slab_v, slab_scale, slab_scale_v;
+    GLint soft_c; /* full: the exponential shadow map's exponent (light.glsl, jd_soft_lit) */
 } shade_prog;
 
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */
@@ -130,6 +131,8 @@ struct jd_renderer {
     GLuint depth_prog, capture_prog, project_prog, reduce_mid_prog, reduce_faces_prog, reduce_final_prog, blur_prog,
         combine_prog;
     diff_prog diff_first, diff_next; /* level 1 from the light map; the others */
+    GLuint soft_prog;
+    GLint soft_src, soft_step, soft_c, soft_scale;
     GLuint aa_prog, up_prog;
     GLint aa_src, aa_texel, aa_scale, up_src, up_scale;
     GLint depth_mvp, depth_light_dir, depth_f0;
@@ -141,6 +144,9 @@ struct jd_renderer {
     GLint comb_src, comb_step, comb_inv, comb_a1, comb_w1, comb_w2, comb_scale;
     target light, atlas, sh1, sh_mid_t, sh2, sh3, irr[6], spread0, spread_tmp, spread1, spread2;
     target diff_tmp, diff_lv[DIFF_TEXTURES];
+    /* full's exponential shadow map (soft_shadow.frag): its first pass's
+     * result, and the map the shading reads in place of the light map. */
+    target soft_tmp, soft;
     target scene;         /* the frame before anti-aliasing or enlarging (post_aa, or drawn smaller) */
     target wide;          /* full's levels summed at a lower resolution (without vertex diffusion) */
     /* The object's extent on screen in NDC (x0, y0, x1, y1) for the pass
@@ -150,6 +156,7 @@ struct jd_renderer {
     size_t target_bytes;
     float box_half;
     jd_vec3 place_c;      /* the mesh's coordinates to the renderer's: (p - place_c) * place_inv_r */
+    jd_vec3 box_min, box_max; /* the mesh's bounding box in the renderer's coordinates */
     float place_inv_r;
     /* What a tiler would pay this frame: render-target switches (each one
      * writes the tile memory out), pixels shaded (by target area), bytes
@@ -223,6 +230,8 @@ void jdr_bind_quad(const jd_renderer *r);
 void jdr_count_target(jd_renderer *r, const char *what, int w, int h);
 void jdr_use_target(jd_renderer *r, const target *t, const char *what);
 void jdr_draw_quad_into(jd_renderer *r, const target *t, const char *what, const target *src);
+/* The same over the rectangle x, y, w, h of t only (the scissor keeps the rest). */
+void jdr_draw_quad_rect(jd_renderer *r, const target *t, const char *what, const target *src, const int rect[4]);
 void jdr_draw_elements(jd_renderer *r, int mesh, const jd_mat4 *mvp, GLsizei count, GLenum type, const void *at,
                           double vertices);
 void jdr_draw_mesh(jd_renderer *r, const jd_mat4 *mvp);
@@ -234,6 +243,8 @@ jd_result jdr_build_programs(jd_renderer *r, jd_error *err);
 void jdr_update_fit(jd_renderer *r, const jd_scene *s, const frame_params *f);
 void jdr_pass_light_depth(jd_renderer *r, const jd_scene *s, const frame_params *f);
 void jdr_pass_diffusion(jd_renderer *r, const jd_scene *s, const frame_params *f);
+void jdr_pass_soft_shadow(jd_renderer *r, const jd_scene *s, const frame_params *f);
+float jdr_soft_c(const jd_renderer *r);
 
 /* pass_sh.c */
 void jdr_update_tail(jd_renderer *r, const jd_scene *s, const frame_params *f);

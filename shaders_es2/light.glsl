@@ -73,6 +73,22 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
 #endif
 }
 
+// full's shadow test: the exponential shadow map (soft_shadow.frag) read at
+// the point p (light-map xy, depth not moved towards the light: the
+// exponential is its own slack). c: exp2's exponent per light-depth unit,
+// 0.35 per texel of depth, soft enough that the stair steps of the light
+// map's texels do not show at a shallow angle, sharp enough that an
+// occluder 10 texels in front keeps 9% of the light; the point is taken a
+// texel nearer the light (exp2(0.35)), or a crease's own walls darken it.
+// Declared in both stages at one precision, as GLSL ES asks of a uniform
+// they share.
+uniform mediump float u_soft_c;
+float jd_soft_lit(sampler2D soft, vec3 p, float c)
+{
+    const vec2 k = vec2(1.0, 1.0 / 255.0);
+    return min(exp2((dot(texture2D(soft, p.xy).xy, k) - p.z) * c + 0.350), 1.0);
+}
+
 // The light a point takes from the levels and through thin parts, as one
 // signed value (lima holds no more through the levels' loop without
 // spilling): where n.l > 0 the lit face's ramp over the terminator's first

@@ -134,7 +134,7 @@ void main()
     // The shadow test without a branch round it: jd_lit_ramp takes it only
     // where ndl > 0 (VideoCore IV's vertex stage 330 -> 286 instructions,
     // 614 -> 477 cycles; Adreno 3xx 628 -> 554).
-    float lit = jd_lit_ramp(ndl, jd_lit_fraction(u_depth_v, v_shadow.xyz, u_light_map_v.xy));
+    float lit = jd_lit_ramp(ndl, jd_soft_lit(u_depth_v, v_shadow.xyw, u_soft_c));
     v_wide = jd_diffused(u_lv0_v, u_lv1_v, u_lv2_v, u_lv3_v, u_lv4_v, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map_v.w, lit);
 #ifndef JD_NO_SLAB
     // A face turned from the light takes what crossed the part from the lit

@@ -13,7 +13,7 @@ uniform vec3 u_albedo;       // Rd_total
 uniform vec3 u_light_color;
 uniform vec4 u_shading;      // ambient, specular, shininess, exposure
 uniform vec4 u_light_map;    // light-depth texels per side, their inverse, Schlick F0, depth slack of the proxy
-uniform sampler2D u_depth;   // light depth, packed; irradiance in alpha
+uniform sampler2D u_depth;   // light depth, packed; irradiance in alpha (full: the exponential shadow map)
 #if JD_FULL && !JD_WIDE_ONLY
 varying vec3 v_view;         // towards the eye, unit length at the vertices (mesh.vert)
 #else
@@ -165,7 +165,12 @@ void main()
     gl_FragColor = vec4(0.5 * translucency(), 1.0);
 #else
     float ndl = max(dot(n, u_light_dir), 0.0);
-#if JD_WIDE_ONLY || JD_SPREAD || (JD_TRANSLUCENT && JD_ALBEDO)
+#if JD_FULL
+    // full's own test, soft (light.glsl, jd_soft_lit): u_depth holds the
+    // exponential shadow map here. v_shadow.w: the depth not moved
+    // towards the light.
+    float vis = jd_soft_lit(u_depth, v_shadow.xyw, u_soft_c);
+#elif JD_SPREAD || (JD_TRANSLUCENT && JD_ALBEDO)
     float vis = ndl > 0.0 ? jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy) : 0.0;
 #else
     // The shadow test without a branch round it: what vis multiplies is

@@ -5,12 +5,14 @@
 # way from the shadow to the lit floor (the light diffuses into the shadow:
 # as far in full as in the reference) and how far the edge strays from a
 # straight line (a shadow in stair steps a light-map texel wide strays by
-# the steps). The floor is 100 mm across the picture's 147 columns of it.
-# jade draws without its anti-aliasing pass here: the boards with
-# multisampling (Mali-400, VideoCore IV; NVIDIA's driver too) never run it,
-# and on llvmpipe it smoothed the steps inside the object that those boards
-# show (at -75 degrees full's edge strayed 0.065 mm with it, 0.226 without,
-# as on an NVIDIA GPU under 4x multisampling).
+# the steps). The floor is 100 mm across the picture's 147 columns of it;
+# rows 60-135 hold the lit floor and 17 rows of the shadow past its edge
+# (until 2026-11-26 the window ended at row 118, inside the edge's dark
+# side at -60 degrees, and gave full's stepped edge there as 3.06 mm wide
+# and straight). jade draws without its anti-aliasing pass here: the
+# boards with multisampling (Mali-400, VideoCore IV; NVIDIA's driver too)
+# never run it, and on llvmpipe it smoothed the steps inside the object
+# that those boards show.
 jade=$1 measure=$2
 . "$(dirname "$0")/harness.sh"
 awk -f "$(dirname "$0")/wall.awk" > "$tmp/wall.obj"
@@ -26,7 +28,7 @@ for az in -60 -75; do
         "$jade" render $scene $opt --antialias off --out "$tmp/$m$az.png" >/dev/null 2>&1 || bad "jade render $opt did not run"
     done
     for p in ref none full mali; do
-        "$measure" "$tmp/$p$az.png" 80 170 60 118 "$mm" > "$tmp/$p$az.json" || bad "no edge measured in $p (light azimuth $az)"
+        "$measure" "$tmp/$p$az.png" 80 170 60 135 "$mm" > "$tmp/$p$az.json" || bad "no edge measured in $p (light azimuth $az)"
     done
     rw=$(field ref$az width_mm) rs=$(field ref$az stray_mm) nw=$(field none$az width_mm)
     echo "light azimuth $az: width / stray in mm: reference $rw / $rs, none $nw / $(field none$az stray_mm)," \
@@ -37,16 +39,17 @@ for az in -60 -75; do
         w=$(field $p$az width_mm) s=$(field $p$az stray_mm)
         # The goal: as soft as the reference within a third either way, and
         # no steps (straying no more than the reference's own line, plus a
-        # tenth of a pixel). Missed at -75 degrees (docs/quality.md: 0.59 of
-        # the reference's width, steps a light-map texel tall): the bounds
-        # hold today's figures with a tenth to spare, so that they cannot
-        # grow unseen.
-        if awk -v w="$w" -v r="$rw" 'BEGIN { exit !(w >= 0.54 * r && w <= 1.5 * r) }'; then ok "$p: edge $w mm wide, the reference's $rw"
-        else bad "$p: edge $w mm wide, the reference's $rw (allowed 0.54-1.5 times)"; fi
-        if awk -v s="$s" 'BEGIN { exit !(s <= 0.25) }'; then
+        # tenth of a pixel). full's exponential shadow map (light.glsl,
+        # jd_soft_lit) meets it: -60 2.25 / 0.105 mm, -75 2.22 / 0.110
+        # against the reference's 2.23 / 0.039 and 2.30 / 0.050; the
+        # mali400 profile's picture strays 0.120 and 0.124 (over by 0.013
+        # at most). The stray's bound holds those with a tenth to spare.
+        if awk -v w="$w" -v r="$rw" 'BEGIN { exit !(w >= 0.67 * r && w <= 1.33 * r) }'; then ok "$p: edge $w mm wide, the reference's $rw"
+        else bad "$p: edge $w mm wide, the reference's $rw (the goal: within a third)"; fi
+        if awk -v s="$s" 'BEGIN { exit !(s <= 0.14) }'; then
             if awk -v s="$s" -v r="$rs" -v mm="$mm" 'BEGIN { exit !(s <= r + 0.1 * mm) }'; then ok "$p: the edge strays $s mm, the reference's $rs"
-            else ok "$p: the edge strays $s mm, within today's 0.25 (steps: the reference's $rs)"; fi
-        else bad "$p: the edge strays $s mm from a straight line, over today's 0.25 (the reference's $rs)"; fi
+            else ok "$p: the edge strays $s mm, within today's 0.14 (the goal: the reference's $rs plus a tenth of a pixel)"; fi
+        else bad "$p: the edge strays $s mm from a straight line, over today's 0.14 (the reference's $rs): stair steps"; fi
     done
 done
 finish shadow_edge
