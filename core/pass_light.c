@@ -198,17 +198,24 @@ float jdr_soft_c(const jd_renderer *r)
     return 0.35f * (float)r->d.light_map_size;
 }
 
-/* The texels of a light-space target of n x n that the object's bounding
- * box covers, and `margin` more each way: x, y, w, h. */
+/* The texels of a light-space target of n x n that the light map's proxy
+ * covers, and `margin` more each way: x, y, w, h. Its vertices taken
+ * through the light's matrix on the CPU, once for each light (a few
+ * thousand): their box is half to two thirds of the one the bounding box's
+ * corners make, and the passes that use it cost that much less. */
 static void object_rect(const jd_renderer *r, const frame_params *f, int n, int margin, int rect[4])
 {
+    /* light map xy = M ((p - c) inv_r): the map's rows of M folded with the placement */
+    const float *m = f->light_tex.m, k = r->place_inv_r;
+    float ax = m[0] * k, bx = m[4] * k, cx = m[8] * k, ay = m[1] * k, by = m[5] * k, cy = m[9] * k;
+    float dx = m[12] - ax * r->place_c.x - bx * r->place_c.y - cx * r->place_c.z;
+    float dy = m[13] - ay * r->place_c.x - by * r->place_c.y - cy * r->place_c.z;
     float lo[2] = {1.0f, 1.0f}, hi[2] = {0.0f, 0.0f};
-    for (int i = 0; i < 8; i++) {
-        jd_vec3 p = jd_v3(i & 1 ? r->box_max.x : r->box_min.x, i & 2 ? r->box_max.y : r->box_min.y,
-                          i & 4 ? r->box_max.z : r->box_min.z);
-        jd_vec3 q = jd_m4_point(f->light_tex, p);
-        lo[0] = fminf(lo[0], q.x), hi[0] = fmaxf(hi[0], q.x);
-        lo[1] = fminf(lo[1], q.y), hi[1] = fmaxf(hi[1], q.y);
+    const float *p = r->proxy.positions;
+    for (uint32_t i = 0; i < r->proxy.num_vertices; i++, p += 3) {
+        float x = ax * p[0] + bx * p[1] + cx * p[2] + dx, y = ay * p[0] + by * p[1] + cy * p[2] + dy;
+        lo[0] = fminf(lo[0], x), hi[0] = fmaxf(hi[0], x);
+        lo[1] = fminf(lo[1], y), hi[1] = fmaxf(hi[1], y);
     }
     int x0 = (int)floorf(lo[0] * (float)n) - margin, y0 = (int)floorf(lo[1] * (float)n) - margin;
     int x1 = (int)ceilf(hi[0] * (float)n) + margin, y1 = (int)ceilf(hi[1] * (float)n) + margin;
@@ -237,11 +244,13 @@ void jdr_pass_soft_shadow(jd_renderer *r, const jd_scene *s, const frame_params 
     glUniform2f(r->soft_step, 1.0f / (float)r->light.tw, 0.0f);
     glBindTexture(GL_TEXTURE_2D, r->light.tex);
     /* Only around the object: the shading reads the map where the object
-     * is (rect, in the map's texels, with 3 to spare each way), and the
+     * is (rect, in the map's texels, with 3 to spare each way beyond the
+     * proxy, whose vertices may lie inside the mesh's outline by its
+     * error; the map spans 2 world units), and the
      * second pass reads the first's rows up to 2.5 light-map texels beyond
      * its own. */
     int rect[4];
-    object_rect(r, f, r->soft.w, 3, rect);
+    object_rect(r, f, r->soft.w, 3 + (int)ceilf(r->proxy_error * 0.5f * (float)r->soft.w), rect);
     int row0 = 2 * rect[1] - 3, row1 = 2 * (rect[1] + rect[3]) + 3;
     row0 = row0 < 0 ? 0 : row0;
     row1 = row1 > r->soft_tmp.h ? r->soft_tmp.h : row1;
