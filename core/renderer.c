@@ -127,8 +127,6 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     r->place_c = c;
     r->place_inv_r = 1.0f / radius;
     r->box_half = 0.5f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius * 1.01f;
-    r->box_min = jd_v3_scale(jd_v3_sub(m->bmin, c), r->place_inv_r);
-    r->box_max = jd_v3_scale(jd_v3_sub(m->bmax, c), r->place_inv_r);
     /* Vertex clustering moves a vertex by at most a cell's diagonal; the
      * surface between, by about half of that. */
     r->proxy_error = 0.87f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius / (float)d->proxy_cells;

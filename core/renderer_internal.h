@@ -156,7 +156,6 @@ struct jd_renderer {
     size_t target_bytes;
     float box_half;
     jd_vec3 place_c;      /* the mesh's coordinates to the renderer's: (p - place_c) * place_inv_r */
-    jd_vec3 box_min, box_max; /* the mesh's bounding box in the renderer's coordinates */
     float place_inv_r;
     /* What a tiler would pay this frame: render-target switches (each one
      * writes the tile memory out), pixels shaded (by target area), bytes

@@ -178,9 +178,9 @@ void main()
     // highlight's own test; full's per-vertex n.l Ft, which reaches 0 at
     // the terminator). Branchless, lima took 3 instruction words fewer,
     // Midgard 3-11 bundles, Adreno 3xx 20-60 instructions, and VideoCore IV
-    // runs it in two threads (where one thread cost 410 cycles). Kept where it was: the summing pass and dual (lima spilled
-    // 1:19 and 2:2 without it), single with a colour (VideoCore IV back to
-    // one thread).
+    // runs it in two threads (where one thread cost 410 cycles). Kept where
+    // it was: dual (lima spilled 2:2 without it) and single with a colour
+    // (VideoCore IV back to one thread).
     float vis = jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy);
 #endif
 #if !JD_WIDE_ONLY
