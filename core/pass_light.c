@@ -94,8 +94,8 @@ static void diffuse_step(jd_renderer *r, const diff_prog *p, const target *from,
     glUniform2f(p->ref_scale, (float)from->tw / (float)from->w, (float)from->th / (float)from->h);
     glUniform2f(p->uv_scale, (float)from->w / from->tw, (float)from->h / from->th);
     glUniform2f(p->step, sx, sy);
-    if (box) { /* two taps a trip */
-        glUniform1i(p->taps, box > 1 ? box * box / 2 : 1);
+    if (box) { /* a square of 2 x 2 taps a trip */
+        glUniform1i(p->taps, box > 1 ? box * box / 4 : 1);
         glUniform1f(p->box, (float)box);
     } else {
         float w[2 * DIFF_TAPS + 1];
@@ -108,7 +108,7 @@ static void diffuse_step(jd_renderer *r, const diff_prog *p, const target *from,
     jdr_draw_quad_into(r, to, what, from);
     jdr_counted_read(r, &r->light, 1); /* the reference depths */
     /* Built with its trips unrolled, the program's own count holds them all. */
-    jdr_counted_trips(r, p->trips ? 1 : box ? (box > 1 ? box * box / 2 : 1) : 2 * taps + 1);
+    jdr_counted_trips(r, p->trips ? 1 : box ? (box > 1 ? box * box / 4 : 1) : 2 * taps + 1);
 }
 
 /* Level k's blur (both directions): its taps a side, their spacing in

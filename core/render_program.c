@@ -120,8 +120,10 @@ static void shade_locations(shade_prog *p)
  * the loop held it to one: the blur at 5 trips 372 instructions a fragment
  * where the loop cost 1719 cycles; Adreno 3xx 455 -> 257; Midgard 152 -> 70
  * bundles; Vivante 210 -> 121) but Utgard, whose six registers spill it (lima 7:32 at 5 trips).
- * The squares (8 trips at the default sizes) stay a loop on Vivante
- * GC400-GC2000 too: unrolled they pass its 256-instruction limit. More
+ * The squares (4 trips at the default sizes) stay a loop on Vivante
+ * GC400-GC2000 too: unrolled at 8 trips (two texels a trip) they passed
+ * its 256-instruction limit, and at 4 (GC3000's build: 198) would leave
+ * little of it for a larger box. More
  * than 8 trips (other light-map and diffusion sizes) stay a loop. */
 static int diffusion_trips(const jd_renderer *r, int first)
 {
@@ -131,7 +133,7 @@ static int diffusion_trips(const jd_renderer *r, int first)
     if (first) {
         int box = r->d.light_map_size / r->d.diffusion_size;
         if (c->max_program_instructions) return 0;
-        trips = box > 1 ? box * box / 2 : 1;
+        trips = box > 1 ? box * box / 4 : 1;
     } else {
         float step, st;
         int taps = jdr_diffusion_taps(r, 0, &step, &st);

@@ -38,29 +38,38 @@ vec2 part(vec2 a, float wsum, float other)
     return vec2(sqrt(a.x / wsum), a.x > 0.0001 * wsum ? clamp(a.y / a.x, 0.0, 0.998) : other);
 }
 
-// One tap of weight w into the near and far sums: (w S, w S z) of each
-// part, written as whole-vector operations (lima spilled where NIR built
-// vectors out of scalars).
 #if JD_FIRST
-void tap(vec2 uv, float w, float zr, inout vec2 near, inout vec2 far, inout float wsum)
+// Four light-map texels, a square of 2 x 2 from uv, into the near and far
+// sums, (S, S z) of each part (the other three weigh `more`: none where a
+// square of one is asked for). The four are worked side by side in the
+// vector lanes: one texel at a time, as the later steps' tap(), lima
+// spilled 8:22 at four a trip.
+void square(vec2 uv, float more, float zr, inout vec4 acc, inout float wsum)
 {
-    vec4 t = texture2D(u_src, uv);
-    float z = dot(t.xy, jd_bytes), lit = w * step(z, 0.998);
-    vec2 ws = (lit * t.a * t.a) * vec2(1.0, z), wn = ws * step(abs(z - zr), u_near);
-    near += wn;
-    far += ws - wn;
-    wsum += lit;
+    vec4 t0 = texture2D(u_src, uv), t1 = texture2D(u_src, uv + vec2(u_step.x, 0.0));
+    vec4 za = vec4(t0.xy, t1.xy);
+    vec2 a01 = vec2(t0.a, t1.a);
+    vec4 t2 = texture2D(u_src, uv + vec2(0.0, u_step.y)), t3 = texture2D(u_src, uv + u_step);
+    vec4 zb = vec4(t2.xy, t3.xy);
+    vec4 z = vec4(za.xz, zb.xz) + vec4(za.yw, zb.yw) * jd_bytes.y;
+    vec4 a = vec4(a01, t2.a, t3.a);
+    vec4 lit = step(z, vec4(0.998)) * vec4(1.0, more, more, more);
+    vec4 ws = lit * a * a, wn = ws * step(abs(z - zr), vec4(u_near)), wf = ws - wn;
+    acc += vec4(dot(wn, vec4(1.0)), dot(wn, z), dot(wf, vec4(1.0)), dot(wf, z));
+    wsum += dot(lit, vec4(1.0));
 }
 #else
-// Each texel holds two parts, (sqrt S, z, sqrt S, z): the sums keep them
-// apart, (part 1, part 2), and are added at the end.
-void tap(vec2 uv, float w, float zr, inout vec2 near, inout vec2 far, inout float wsum)
+// One tap of weight w into the near and far sums: (w S, w S z) of each
+// part, written as whole-vector operations (lima spilled where NIR built
+// vectors out of scalars). Each texel holds two parts, (sqrt S, z,
+// sqrt S, z): the sums keep them apart, (part 1, part 2), and are added at
+// the end.
+void tap(vec2 uv, float w, float zr, inout vec4 acc, inout float wsum)
 {
     vec4 t = texture2D(u_src, uv), z = t.yyww;
     vec4 ws = (w * t.xxzz * t.xxzz * step(z, vec4(0.998))) * (t * vec4(0.0, 1.0, 0.0, 1.0) + vec4(1.0, 0.0, 1.0, 0.0));
     vec4 wn = ws * step(abs(z - zr), vec4(u_near)), wf = ws - wn;
-    near += wn.xy + wn.zw;
-    far += wf.xy + wf.zw;
+    acc += vec4(wn.xy + wn.zw, wf.xy + wf.zw);
     wsum += w * step(min(t.y, t.w), 0.998);
 }
 #endif
@@ -71,7 +80,7 @@ void main()
     // Normalised convolution on the light's coverage: near the object's
     // outline as the light sees it there is lit surface on one side and
     // nothing (not dark surface) on the other.
-    vec2 near = vec2(0.0), far = vec2(0.0);
+    vec4 acc = vec4(0.0); // the near part's (S, S z), the far part's
     float wsum = 0.0;
     // A loop the compilers keep as a loop: its trip count is a uniform, and
     // its constant bound (GLSL ES 1.00 wants one) is past what Mesa's NIR
@@ -95,17 +104,18 @@ void main()
         // The first level's first step: every light-map texel under this
         // output texel (u_box a side, a power of two) with the same weight,
         // at a quarter of the fragments a first pass along one axis writes;
-        // two a trip, u_taps trips (a side of 1: one tap, the second
-        // weighs 0). One a trip, the loop's own words came 16 times.
-        float fi = float(2 * i);
-        vec2 o = vec2(mod(fi, u_box), floor(fi / u_box)) - 0.5 * (u_box - 1.0);
-        tap(v_uv + o * u_step, 1.0, zr, near, far, wsum);
-        tap(v_uv + (o + vec2(1.0, 0.0)) * u_step, step(1.5, u_box), zr, near, far, wsum);
+        // a square of 2 x 2 a trip, u_taps trips (a side of 1: one tap, the
+        // others weigh 0). One texel a trip, the loop's own words came 16
+        // times; two a trip, lima's 8 trips at the default sizes cost 536
+        // instruction words a fragment, the four in vector lanes 326 (with
+        // 6 spills, which the count holds).
+        float hb = 0.5 * u_box, fi = float(i);
+        vec2 o = 2.0 * vec2(mod(fi, hb), floor(fi / hb)) - 0.5 * (u_box - 1.0);
+        square(v_uv + o * u_step, step(1.5, u_box), zr, acc, wsum);
 #else
-        tap(v_uv + (float(i) - float(u_taps)) * u_step, u_w[i], zr, near, far, wsum);
+        tap(v_uv + (float(i) - float(u_taps)) * u_step, u_w[i], zr, acc, wsum);
 #endif
     }
-    vec4 acc = vec4(near, far);
     if (wsum <= 0.0) {
         gl_FragColor = vec4(0.0, 1.0, 0.0, 1.0);
     } else {
