@@ -87,7 +87,7 @@ static const opt table[] = {
     {"--light-map", T_INT, OFF(rdesc.light_map_size), 16, 2048, R | B, "N          light depth map size, a power of two [256]"},
     {"--proxy-cells", T_INT, OFF(rdesc.proxy_cells), 4, 64, R | B, "N          proxy mesh grid [40]"},
     {"--spread-divisor", T_INT, OFF(rdesc.spread_divisor), 1, 16, R | B, "N          spread layers at 1/N resolution [8]"},
-    {"--diffusion-size", T_INT, OFF(rdesc.diffusion_size), 16, 2048, R | B, "N          full mode: first light-space diffusion level, texels per side [light map / 4]"},
+    {"--diffusion-size", T_INT, OFF(rdesc.diffusion_size), 16, 2048, R | B, "N          full mode: first light-space diffusion level, texels per side, a power of two from light map / 16 [light map / 4]"},
     {"--compile", T_FLAG, OFF(compile_only), 0, 0, JD_OPT_INFO,
      "           build every shader program of every mode (as the renderer would for this device or --profile), draw nothing; a table, exit 1 if one fails"},
     {"--boards", T_FLAG, OFF(list_boards), 0, 0, JD_OPT_INFO, "           list the boards of the frame-cost model (bench --device) and their constants' sources"},

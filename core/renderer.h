@@ -46,7 +46,7 @@ typedef struct jd_renderer_desc {
     int proxy_cells;      /* [40] vertex-clustering grid of the proxy mesh */
     int capture_cells;    /* [24] coarser proxy for the cube capture */
     int spread_divisor;   /* [8] spread layers at 1/N resolution */
-    int diffusion_size;   /* [light_map_size / 4] texels per side of the full mode's first light-space level, a power of two */
+    int diffusion_size;   /* [light_map_size / 4] texels per side of the full mode's first light-space level, a power of two, at least light_map_size / 16 */
     jd_precision precision; /* [from the device's fragment highp support] */
     jd_antialias antialias; /* [AUTO] */
     int no_cull;          /* draw back faces too (open meshes) */

@@ -35,6 +35,8 @@ expect "size with a sign" 2 "expected WxH" -- "$jade" render --size +64x64
 expect "size with a tail" 2 "expected WxH" -- "$jade" render --size 64x64x2
 # A light map that is not a power of two put every shadow in the wrong place.
 expect "light map not a power of two" 1 "light map size 200 must be a power of two" -- "$jade" render --light-map 200 --diffusion-size 32 --out "$tmp/lm.png"
+# A diffusion texel past 16 x 16 light-map texels: its loop read part of the square.
+expect "diffusion texel over 16 light-map texels a side" 1 "diffusion texel gathers at most 16 x 16 light-map texels (diffusion size at least 64)" -- "$jade" render --light-map 1024 --diffusion-size 32 --out "$tmp/ds.png"
 expect "option=value" 0 "wrote $tmp/eq.png (48x32" -- "$jade" render --size=48x32 --out="$tmp/eq.png" --mode=none
 expect "flag=value" 2 "takes no value" -- "$jade" render --no-cull=1
 expect "did you mean" 2 "did you mean --frames?" -- "$jade" render --frame 3
