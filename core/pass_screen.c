@@ -130,11 +130,9 @@ static void blur(jd_renderer *r, GLint step_loc, GLint inv_loc, const target *sr
 }
 
 /* A low-resolution layer drawn with a shading program: cleared to "not
- * covered" (alpha 0), depth-tested, culled as the main pass; of the whole
- * mesh (full's levels) or of the coarse capture proxy (the spread's A0). */
-/* A low-resolution layer drawn from one of the proxies: the light map's
- * (levels: the full mode's sum of the levels) or the coarser capture's (the
- * spread funnel's A0). */
+ * covered" (alpha 0), depth-tested, culled as the main pass; of the light
+ * map's proxy (levels: full's sum of the levels) or of the coarser capture
+ * proxy (the spread's A0). */
 static void draw_layer(jd_renderer *r, const target *t, const shade_prog *p, const frame_params *f, int levels,
                        const char *what)
 {
