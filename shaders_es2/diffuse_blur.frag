@@ -25,10 +25,8 @@ uniform float u_box;        // light-map texels a side of the square one output 
 #endif
 varying vec2 v_uv;
 
-// The light map's depths read as high byte + low byte / 255, without
-// jd_unpack's exact recovery of the bytes (the PCF's reasoning, light.glsl):
-// the levels keep their depths in one byte.
-const vec2 jd_bytes = vec2(1.0, 1.0 / 255.0);
+// The light map's depths are read by two bytes (jd_bytes, pack.glsl): the
+// levels keep their depths in one byte.
 
 // sqrt(S) and the mean depth of a part; `other`, the depth to give it where
 // it holds no light: filtering between texels must not see a depth that no
@@ -94,6 +92,7 @@ void main()
     // shorter unrolled (every one but Utgard: render_program.c).
     for (int i = 0; i < JD_TRIPS; i++) {
 #elif JD_BOX
+    // At most 65 squares of 2 x 2: renderer.c refuses a box over 16 a side.
     for (int i = 0; i <= 64; i++) {
         if (i >= u_taps) break;
 #else

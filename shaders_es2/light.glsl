@@ -52,20 +52,19 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
     float s11 = step(l.z, jd_unpack(texture2D(depth, b + vec2(d, d))));
     return mix(mix(s00, s10, f.x), mix(s01, s11, f.x), f.y);
 #else
-    const vec2 k = vec2(1.0, 1.0 / 255.0);
 #ifdef JD_PCF_SCALAR
     // none's and single's with a colour: the vector form below spilled on
     // lima there (1:1, the colour held from the shader's start).
-    float s00 = step(l.z, dot(texture2D(depth, b).xy, k));
-    float s10 = step(l.z, dot(texture2D(depth, b + vec2(d, 0.0)).xy, k));
-    float s01 = step(l.z, dot(texture2D(depth, b + vec2(0.0, d)).xy, k));
-    float s11 = step(l.z, dot(texture2D(depth, b + vec2(d, d)).xy, k));
+    float s00 = step(l.z, dot(texture2D(depth, b).xy, jd_bytes));
+    float s10 = step(l.z, dot(texture2D(depth, b + vec2(d, 0.0)).xy, jd_bytes));
+    float s01 = step(l.z, dot(texture2D(depth, b + vec2(0.0, d)).xy, jd_bytes));
+    float s11 = step(l.z, dot(texture2D(depth, b + vec2(d, d)).xy, jd_bytes));
     return mix(mix(s00, s10, f.x), mix(s01, s11, f.x), f.y);
 #else
     // The four tests and the first mix as vector operations: 2 of lima's
     // instruction words fewer than one texel at a time.
-    vec4 z = vec4(dot(texture2D(depth, b).xy, k), dot(texture2D(depth, b + vec2(d, 0.0)).xy, k),
-                  dot(texture2D(depth, b + vec2(0.0, d)).xy, k), dot(texture2D(depth, b + vec2(d, d)).xy, k));
+    vec4 z = vec4(dot(texture2D(depth, b).xy, jd_bytes), dot(texture2D(depth, b + vec2(d, 0.0)).xy, jd_bytes),
+                  dot(texture2D(depth, b + vec2(0.0, d)).xy, jd_bytes), dot(texture2D(depth, b + vec2(d, d)).xy, jd_bytes));
     vec4 s = step(vec4(l.z), z);
     vec2 m = mix(s.xz, s.yw, f.x);
     return mix(m.x, m.y, f.y);
@@ -85,8 +84,7 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
 uniform mediump float u_soft_c;
 float jd_soft_lit(sampler2D soft, vec3 p, float c)
 {
-    const vec2 k = vec2(1.0, 1.0 / 255.0);
-    return min(exp2((dot(texture2D(soft, p.xy).xy, k) - p.z) * c + 0.350), 1.0);
+    return min(exp2((dot(texture2D(soft, p.xy).xy, jd_bytes) - p.z) * c + 0.350), 1.0);
 }
 
 // The light a point takes from the levels and through thin parts, as one

@@ -30,6 +30,13 @@ float jd_unpack(vec4 p)
 #endif
 }
 
+// A packed depth's first two bytes as high byte + low byte / 255:
+// dot(texel.xy, jd_bytes). Without jd_unpack's exact recovery of the bytes,
+// where a texture unit's error of 1e-5 is nothing beside what reads it (a
+// shadow test's bias, a blur, fp16) and the recovery costs instruction
+// words (light.glsl, jd_lit_fraction).
+const vec2 jd_bytes = vec2(1.0, 1.0 / 255.0);
+
 // Signed values in [-1,1], for the SH reduction. highp: the 3-byte packing of
 // s/2 + 0.5. mediump: an offset of 0.5 would spend fp16's 11 bits on the
 // offset, so the positive and negative parts get two bytes each and small

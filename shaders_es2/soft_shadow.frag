@@ -21,12 +21,11 @@ varying vec4 v_a, v_b, v_c; // the taps (soft_shadow.vert)
 
 void main()
 {
-    // Read as the shadow test reads depth (high byte + low byte / 255).
-    const vec2 k = vec2(1.0, 1.0 / 255.0);
-    vec3 a = vec3(dot(texture2D(u_src, v_a.xy).xy, k), dot(texture2D(u_src, v_a.zw).xy, k),
-                  dot(texture2D(u_src, v_b.xy).xy, k));
-    vec3 b = vec3(dot(texture2D(u_src, v_b.zw).xy, k), dot(texture2D(u_src, v_c.xy).xy, k),
-                  dot(texture2D(u_src, v_c.zw).xy, k));
+    // Read as the shadow test reads depth (jd_bytes, pack.glsl).
+    vec3 a = vec3(dot(texture2D(u_src, v_a.xy).xy, jd_bytes), dot(texture2D(u_src, v_a.zw).xy, jd_bytes),
+                  dot(texture2D(u_src, v_b.xy).xy, jd_bytes));
+    vec3 b = vec3(dot(texture2D(u_src, v_b.zw).xy, jd_bytes), dot(texture2D(u_src, v_c.xy).xy, jd_bytes),
+                  dot(texture2D(u_src, v_c.zw).xy, jd_bytes));
     // Where nothing was drawn (depth 1, the cleared map) counts as the
     // deepest surface among the taps, not as a surface at the far end of
     // the light's box: exp2 of that far depth would outweigh every other
