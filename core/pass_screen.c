@@ -25,7 +25,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     /* full's programs read the exponential shadow map where the others
      * read the light map (light.glsl, jd_soft_lit). */
     glBindTexture(GL_TEXTURE_2D, p->soft_c >= 0 ? r->soft.tex : r->light.tex);
-    if (p->soft_c >= 0) glUniform1f(p->soft_c, jdr_soft_c(r));
+    if (p->soft_c >= 0) glUniform2f(p->soft_c, jdr_soft_c(r), jdr_soft_c(r) / 255.0f);
     if (p->local_x >= 0 || p->lw >= 0) { /* full: the local weight, the levels (either may be compiled out) */
         float lw[DIFF_LEVELS][3], ls[6] = {0}, wl[3] = {0};
         const jd_diffusion_fit *fit = &r->fit;
@@ -247,7 +247,11 @@ void jdr_pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
         for (int i = 0; i < r->diff_levels; i++) jdr_counted_read(r, &r->diff_lv[i], 1);
     if (s->mode == JD_MODE_SINGLE || s->mode == JD_MODE_DUAL) jdr_counted_read(r, &r->irr[0], 6);
     if (s->mode == JD_MODE_DUAL) jdr_counted_read(r, &r->spread2, 1);
+    /* The shading's alpha is not the picture's: shade.frag writes what
+     * saved lima two instruction words, and the clear's 1 stays. */
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
     jdr_draw_mesh(r, &f->mvp);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 /* The object's extent on screen in NDC: the proxy's vertices projected,

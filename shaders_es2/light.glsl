@@ -73,18 +73,19 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
 }
 
 // full's shadow test: the exponential shadow map (soft_shadow.frag) read at
-// the point p (light-map xy, depth not moved towards the light: the
-// exponential is its own slack). c: exp2's exponent per light-depth unit,
+// the point p (light-map xy; z its depth, not moved towards the light: the
+// exponential is its own slack, as the exponent z c - 0.35, which the
+// vertex stage gives). c: exp2's exponent per light-depth unit,
 // 0.35 per texel of depth, soft enough that the stair steps of the light
 // map's texels do not show at a shallow angle, sharp enough that an
 // occluder 10 texels in front keeps 9% of the light; the point is taken a
 // texel nearer the light (exp2(0.35)), or a crease's own walls darken it.
 // Declared in both stages at one precision, as GLSL ES asks of a uniform
 // they share.
-uniform mediump float u_soft_c;
-float jd_soft_lit(sampler2D soft, vec3 p, float c)
+uniform mediump vec2 u_soft_c; // c and c / 255: the two bytes' weights
+float jd_soft_lit(sampler2D soft, vec3 p)
 {
-    return min(exp2((dot(texture2D(soft, p.xy).xy, jd_bytes) - p.z) * c + 0.350), 1.0);
+    return min(exp2(dot(texture2D(soft, p.xy).xy, u_soft_c) - p.z), 1.0);
 }
 
 // The light a point takes from the levels and through thin parts, as one

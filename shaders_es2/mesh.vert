@@ -44,7 +44,7 @@ varying vec2 v_uv;
 // vertex a fragment), and both factors are smooth.
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 uniform float u_f0;
-varying vec2 v_fresnel;
+varying vec3 v_fresnel;
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
 // Where the vertex stage can read textures, the full mode's light-space
@@ -116,16 +116,27 @@ void main()
     gl_Position = u_mvp * vec4(a_position, 1.0);
     vec4 sp = u_light_tex * vec4(a_position, 1.0);
     v_shadow = sp.xyzz;
+#if JD_FULL
+    // full's shadow test takes the depth as its exponential's exponent
+    // (light.glsl, jd_soft_lit): scaled and offset here, not per fragment;
+    // full moves no depth towards the light (the bias below is the 2x2
+    // test's), and v_shadow.w keeps the depth itself.
+    v_shadow.z = sp.z * u_soft_c.x - 0.350;
+#else
     // The light looks down its +z: a normal facing it has a negative z there.
     float cl = clamp(abs(2.0 * (u_light_tex * vec4(a_normal, 0.0)).z), 0.2, 1.0);
     v_shadow.z -= u_shadow_bias.y + u_shadow_bias.x * (1.0 + sqrt(1.0 - cl * cl) / cl);
+#endif
 #if JD_FULL && !JD_WIDE_ONLY
     vec3 nf = a_normal;
     vec3 vf = normalize(u_eye - a_position);
     if (dot(nf, vf) < 0.0) nf = -nf;
     float ndl_v = max(dot(nf, u_light_dir), 0.0);
     v_view = vf;
-    v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_f0), jd_fresnel_tc(dot(nf, vf), u_f0));
+    // The half vector's inverse length for the highlight's n.h (shade.frag);
+    // 2.0001: finite where the light is exactly behind the object.
+    v_fresnel = vec3(ndl_v * jd_fresnel_tc(ndl_v, u_f0), jd_fresnel_tc(dot(nf, vf), u_f0),
+                     inversesqrt(2.0001 + 2.0 * dot(u_light_dir, vf)));
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
     vec3 nv = a_normal;
@@ -134,7 +145,7 @@ void main()
     // The shadow test without a branch round it: jd_lit_ramp takes it only
     // where ndl > 0 (VideoCore IV's vertex stage 330 -> 286 instructions,
     // 614 -> 477 cycles; Adreno 3xx 628 -> 554).
-    float lit = jd_lit_ramp(ndl, jd_soft_lit(u_depth_v, v_shadow.xyw, u_soft_c));
+    float lit = jd_lit_ramp(ndl, jd_soft_lit(u_depth_v, v_shadow.xyz));
     v_wide = jd_diffused(u_lv0_v, u_lv1_v, u_lv2_v, u_lv3_v, u_lv4_v, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map_v.w, lit);
 #ifndef JD_NO_SLAB
     // A face turned from the light takes what crossed the part from the lit

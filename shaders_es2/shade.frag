@@ -46,7 +46,7 @@ uniform vec3 u_amb_x;        // Rd_total x ambient x exposure
 uniform vec3 u_local_x;      // light colour x Rd's weight on the Gaussians finer than a level texel x exposure
 uniform vec3 u_wide_x;       // light colour x exposure (x 2 where the levels' sum is read halved)
 uniform vec3 u_spec_x;       // light colour x specular x exposure
-varying vec2 v_fresnel;      // n.l Ft(l)/c and Ft(v)/c, per vertex (mesh.vert)
+varying vec3 v_fresnel;      // n.l Ft(l)/c, Ft(v)/c and 1 / |l + v|, per vertex (mesh.vert)
 #endif
 #if JD_VERTEX_DIFFUSION
 varying vec3 v_wide;         // the levels' light, per vertex (jd_diffused)
@@ -151,13 +151,14 @@ void main()
     // The direction to the eye as the vertices had it, not normalised
     // again: between unit vectors 5 degrees apart as the eye sees them the
     // interpolated one is at most 0.1% short, and only the highlight's
-    // half vector (normalised below) and a sign take it (lima 4 instruction
-    // words fewer, vc4 10-39 instructions).
+    // n.h and a sign take it (lima 4 instruction words fewer, vc4 10-39
+    // instructions).
     vec3 v = v_view;
 #else
     vec3 v = normalize(u_eye - v_pos);
 #endif
-    if (dot(n, v) < 0.0) n = -n;
+    float ndv = dot(n, v);
+    if (ndv < 0.0) n = -n;
 #endif
 #if JD_A0_ONLY
     // The spread funnel's input: A0 premultiplied by coverage (alpha 1), at
@@ -167,9 +168,9 @@ void main()
     float ndl = max(dot(n, u_light_dir), 0.0);
 #if JD_FULL
     // full's own test, soft (light.glsl, jd_soft_lit): u_depth holds the
-    // exponential shadow map here. v_shadow.w: the depth not moved
-    // towards the light.
-    float vis = jd_soft_lit(u_depth, v_shadow.xyw, u_soft_c);
+    // exponential shadow map here. v_shadow.z: the depth not moved
+    // towards the light, as the exponent (mesh.vert).
+    float vis = jd_soft_lit(u_depth, v_shadow.xyz);
 #elif JD_SPREAD || (JD_TRANSLUCENT && JD_ALBEDO)
     float vis = ndl > 0.0 ? jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy) : 0.0;
 #else
@@ -184,8 +185,16 @@ void main()
     float vis = jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy);
 #endif
 #if !JD_WIDE_ONLY
-    vec3 h = normalize(u_light_dir + v);
-    float spec = ndl > 0.0 ? vis * pow(max(dot(n, h), 0.0), u_shading.z) : 0.0;
+#if JD_FULL
+    // n.h without the half vector: n.(l + v) over |l + v|, whose inverse
+    // the vertices give (smooth: it depends on the view alone). lima 4
+    // instruction words fewer than normalising l + v here, VideoCore IV
+    // about 20 instructions; a third component on a varying already sent.
+    float nh = (dot(n, u_light_dir) + abs(ndv)) * v_fresnel.z;
+#else
+    float nh = dot(n, normalize(u_light_dir + v));
+#endif
+    float spec = ndl > 0.0 ? vis * pow(max(nh, 0.0), u_shading.z) : 0.0;
 #endif
 #if JD_FULL
 #if JD_VERTEX_DIFFUSION
@@ -255,7 +264,9 @@ void main()
     // 6e-5 come out up to half a display step darker. Above 1 the RGBA8
     // target clamps, as GLES 2.0 has every fixed-point colour buffer do
     // (an explicit min cost VideoCore IV and Adreno 4 instructions).
-    gl_FragColor = vec4(col * inversesqrt(max(col * (1.0 + 0.15 * col), 6.1035e-5)), 1.0);
+    // Alpha: whatever is at hand, not 1, and masked off where this is drawn
+    // (pass_screen.c, jdr_pass_main): lima took two words to write the 1.
+    gl_FragColor = (col * inversesqrt(max(col * (0.15 * col + 1.0), 6.1035e-5))).xyzx;
 #endif
 #endif
 }
