@@ -12,10 +12,10 @@ uniform mat4 u_mvp;
 uniform mat4 u_light_tex;
 uniform mediump vec3 u_eye; // shared with the fragment stage: precisions must match
 uniform vec2 u_shadow_bias;  // light-depth units: per unit of the surface's slope to the light, and always
-#if JD_FULL && !JD_WIDE_ONLY
-varying vec3 v_view;        // towards the eye, unit length: full's fragment stage takes it as it comes
-#else
+#if JD_WIDE_ONLY
 varying vec3 v_pos;
+#else
+varying vec3 v_view;        // towards the eye, unit length: the fragment stage takes it as it comes
 #endif
 varying vec3 v_normal;
 // Where the point falls in the light-depth map, moved towards the light so
@@ -44,7 +44,7 @@ varying vec2 v_uv;
 // vertex a fragment), and both factors are smooth.
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 uniform float u_f0;
-varying vec3 v_fresnel;
+varying vec2 v_fresnel;
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
 // Where the vertex stage can read textures, the full mode's light-space
@@ -109,8 +109,11 @@ void main()
     v_uv = a_uv;
 #endif
 #endif
-#if !(JD_FULL && !JD_WIDE_ONLY)
+#if JD_WIDE_ONLY
     v_pos = a_position;
+#else
+    vec3 vf = normalize(u_eye - a_position);
+    v_view = vf;
 #endif
     v_normal = a_normal;
     gl_Position = u_mvp * vec4(a_position, 1.0);
@@ -120,7 +123,7 @@ void main()
     // full's shadow test takes the depth as its exponential's exponent
     // (light.glsl, jd_soft_lit): scaled and offset here, not per fragment;
     // full moves no depth towards the light (the bias below is the 2x2
-    // test's), and v_shadow.w keeps the depth itself.
+    // test's).
     v_shadow.z = sp.z * u_soft_c.x - 0.350;
 #else
     // The light looks down its +z: a normal facing it has a negative z there.
@@ -129,14 +132,9 @@ void main()
 #endif
 #if JD_FULL && !JD_WIDE_ONLY
     vec3 nf = a_normal;
-    vec3 vf = normalize(u_eye - a_position);
     if (dot(nf, vf) < 0.0) nf = -nf;
     float ndl_v = max(dot(nf, u_light_dir), 0.0);
-    v_view = vf;
-    // The half vector's inverse length for the highlight's n.h (shade.frag);
-    // 2.0001: finite where the light is exactly behind the object.
-    v_fresnel = vec3(ndl_v * jd_fresnel_tc(ndl_v, u_f0), jd_fresnel_tc(dot(nf, vf), u_f0),
-                     inversesqrt(2.0001 + 2.0 * dot(u_light_dir, vf)));
+    v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_f0), jd_fresnel_tc(dot(nf, vf), u_f0));
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
     vec3 nv = a_normal;
@@ -155,7 +153,7 @@ void main()
 #endif
 #if JD_TRANSLUCENT
     vec3 n = a_normal;
-    vec3 view = normalize(u_eye - a_position);
+    vec3 view = vf;
     if (dot(n, view) < 0.0) n = -n;
     // Thickness is read at a point moved inward, so the surface does not
     // measure itself.

@@ -14,10 +14,10 @@ uniform vec3 u_light_color;
 uniform vec4 u_shading;      // ambient, specular, shininess, exposure
 uniform vec4 u_light_map;    // light-depth texels per side, their inverse, Schlick F0, depth slack of the proxy
 uniform sampler2D u_depth;   // light depth, packed; irradiance in alpha (full: the exponential shadow map)
-#if JD_FULL && !JD_WIDE_ONLY
-varying vec3 v_view;         // towards the eye, unit length at the vertices (mesh.vert)
-#else
+#if JD_WIDE_ONLY
 varying vec3 v_pos;
+#else
+varying vec3 v_view;         // towards the eye, unit length at the vertices (mesh.vert)
 #endif
 varying vec3 v_normal;
 varying vec4 v_shadow;
@@ -46,7 +46,7 @@ uniform vec3 u_amb_x;        // Rd_total x ambient x exposure
 uniform vec3 u_local_x;      // light colour x Rd's weight on the Gaussians finer than a level texel x exposure
 uniform vec3 u_wide_x;       // light colour x exposure (x 2 where the levels' sum is read halved)
 uniform vec3 u_spec_x;       // light colour x specular x exposure
-varying vec3 v_fresnel;      // n.l Ft(l)/c, Ft(v)/c and 1 / |l + v|, per vertex (mesh.vert)
+varying vec2 v_fresnel;      // n.l Ft(l)/c and Ft(v)/c, per vertex (mesh.vert)
 #endif
 #if JD_VERTEX_DIFFUSION
 varying vec3 v_wide;         // the levels' light, per vertex (jd_diffused)
@@ -147,18 +147,15 @@ void main()
     if (dot(n, u_eye - v_pos) < 0.0) n = -n;
 #else
     vec3 n = normalize(v_normal);
-#if JD_FULL
     // The direction to the eye as the vertices had it, not normalised
     // again: between unit vectors 5 degrees apart as the eye sees them the
     // interpolated one is at most 0.1% short, and only the highlight's
-    // n.h and a sign take it (lima 4 instruction words fewer, vc4 10-39
-    // instructions).
+    // half vector (normalised below) and a sign take it (lima 4
+    // instruction words fewer in every mode, vc4 10-39 instructions). On a
+    // face spanning tens of degrees close up its direction, and the
+    // highlight, move a little (a 12-triangle cube: 0.03 RMSE).
     vec3 v = v_view;
-#else
-    vec3 v = normalize(u_eye - v_pos);
-#endif
-    float ndv = dot(n, v);
-    if (ndv < 0.0) n = -n;
+    if (dot(n, v) < 0.0) n = -n;
 #endif
 #if JD_A0_ONLY
     // The spread funnel's input: A0 premultiplied by coverage (alpha 1), at
@@ -185,16 +182,8 @@ void main()
     float vis = jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy);
 #endif
 #if !JD_WIDE_ONLY
-#if JD_FULL
-    // n.h without the half vector: n.(l + v) over |l + v|, whose inverse
-    // the vertices give (smooth: it depends on the view alone). lima 4
-    // instruction words fewer than normalising l + v here, VideoCore IV
-    // about 20 instructions; a third component on a varying already sent.
-    float nh = (dot(n, u_light_dir) + abs(ndv)) * v_fresnel.z;
-#else
-    float nh = dot(n, normalize(u_light_dir + v));
-#endif
-    float spec = ndl > 0.0 ? vis * pow(max(nh, 0.0), u_shading.z) : 0.0;
+    vec3 h = normalize(u_light_dir + v);
+    float spec = ndl > 0.0 ? vis * pow(max(dot(n, h), 0.0), u_shading.z) : 0.0;
 #endif
 #if JD_FULL
 #if JD_VERTEX_DIFFUSION
