@@ -65,9 +65,10 @@ int jd_cmd_reference(int argc, char **argv)
             goto done;
         }
     }
-    printf("wrote %s%s%s%s%s (%dx%d, reference, %s, mesh %s: %u triangles)\n", o.out, o.pfm ? ", " : "",
-           o.pfm ? o.pfm : "", o.mask_out ? ", " : "", o.mask_out ? o.mask_out : "", o.width, o.height, o.material,
-           s.mesh_path, s.mesh.num_indices / 3);
+    char tri[80];
+    printf("wrote %s%s%s%s%s (%dx%d, reference, %s, mesh %s: %s)\n", o.out, o.pfm ? ", " : "", o.pfm ? o.pfm : "",
+           o.mask_out ? ", " : "", o.mask_out ? o.mask_out : "", o.width, o.height, o.material, s.mesh_path,
+           jd_session_triangles(&s, tri, sizeof tri));
     printf("%u samples (%.3f mm apart over %.0f mm^2; %u carry light across a thin part), window %.2f mm, %d "
            "threads; irradiance %.0f ms, octree %.0f ms, pixels %.0f ms (%ld on the object, %.0f kernel evaluations "
            "each)\n",

@@ -59,8 +59,9 @@ int jd_cmd_render(int argc, char **argv)
     } else {
         jd_renderer_info info;
         jd_renderer_get_info(s.renderer, &info);
-        printf("wrote %s (%dx%d, %s, %s, mesh %s: %u triangles)\n", o.out, o.width, o.height,
-               jd_mode_name(o.scene.mode), o.material, s.mesh_path, s.mesh.num_indices / 3);
+        char tri[80];
+        printf("wrote %s (%dx%d, %s, %s, mesh %s: %s)\n", o.out, o.width, o.height, jd_mode_name(o.scene.mode),
+               o.material, s.mesh_path, jd_session_triangles(&s, tri, sizeof tri));
         printf("frame %.1f ms (after a warm-up frame), readback %.1f ms, first frame %.0f ms after start, "
                "decode %.1f ms, arena peak %zu bytes, render targets %zu bytes",
                frame_ms, read_ms, first_ms, s.load.decode_ms, s.arena.peak, info.target_bytes);

@@ -31,6 +31,9 @@ int jd_session_open_mesh(jd_session *s, jd_options *o, const char *cmd);
  * one is back, -1 neither works (said). */
 int jd_session_reload_mesh(jd_session *s, jd_options *o, const char *cmd);
 void jd_session_close(jd_session *s);
+/* "N triangles", and ", split to M where coarse" where the loader split
+ * them (core/mesh_subdivide.c), into buf. */
+const char *jd_session_triangles(const jd_session *s, char *buf, size_t cap);
 /* One line: how the edges are anti-aliased. */
 const char *jd_antialias_describe(const jd_renderer *r);
 /* The default asset beside the program (build tree) or installed. */

@@ -22,6 +22,7 @@ enum { JD_DRACO_HAS_NORMALS = 1, JD_DRACO_HAS_UVS = 2, JD_DRACO_HAS_MATERIAL = 4
  * [uint8 colour[4*nv]], [uint32 w, h, uint8 texels[4*w*h]]. */
 typedef struct jd_draco_record_header {
     uint32_t magic, num_vertices, num_faces, flags;
+    uint32_t faces_read; /* the file's triangles, before coarse ones were split (mesh_subdivide.c) */
 } jd_draco_record_header;
 
 typedef int (*jd_draco_write_fn)(void *user, const void *data, size_t n);

@@ -87,7 +87,8 @@ int jd_mesh_arrays_emit(const jd_mesh_arrays *m, jd_record_write_fn write, void 
                                     (m->material[0] ? (uint32_t)JD_DRACO_HAS_MATERIAL : 0u) |
                                     (m->medium.flags ? (uint32_t)JD_DRACO_HAS_MEDIUM : 0u) |
                                     (m->col ? (uint32_t)JD_DRACO_HAS_COLORS : 0u) |
-                                    (m->tex.texels ? (uint32_t)JD_DRACO_HAS_TEXTURE : 0u)};
+                                    (m->tex.texels ? (uint32_t)JD_DRACO_HAS_TEXTURE : 0u),
+                                m->nf_read ? m->nf_read : m->nf};
     uint32_t tex_size[2] = {m->tex.w, m->tex.h};
     size_t nv = m->nv;
     if (write(user, &h, sizeof h) || write(user, m->pos, sizeof(float) * 3 * nv) ||

@@ -16,6 +16,7 @@ extern "C" {
 
 typedef struct jd_mesh_arrays {
     uint32_t nv, nf;
+    uint32_t nf_read; /* the file's triangles, where splitting made nf more; or 0 */
     float *pos;      /* 3 per vertex */
     float *nrm;      /* 3 per vertex, or NULL */
     float *uv;       /* 2 per vertex, or NULL */

@@ -18,6 +18,7 @@
 #include "draco_shim.h"
 #include "gltf_read.h"
 #include "mesh_albedo.h"
+#include "mesh_subdivide.h"
 #include "obj_material.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -106,8 +107,15 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
         /* Neither sent nor checked nor given arena memory where nothing
          * needs them (a colour texture does). */
         if (!d->keep_uvs && !m.tex.texels) jd_mesh_arrays_drop_uvs(&m);
-        if (!d->keep_face_order) jd_mesh_arrays_order(&m);
-        if (jd_mesh_arrays_emit(&m, write_all, &data_fd) != 0) {
+        /* Split where coarse, then ordered; as the file has them where the
+         * caller keeps the triangles' order (jade convert). */
+        m.nf_read = m.nf;
+        if (!d->keep_face_order && jd_mesh_arrays_subdivide(&m, d->max_vertices, d->max_faces) != 0) {
+            snprintf(msg, sizeof msg, "out of memory splitting its large triangles");
+            rc = -1;
+        }
+        if (rc == 0 && !d->keep_face_order) jd_mesh_arrays_order(&m);
+        if (rc == 0 && jd_mesh_arrays_emit(&m, write_all, &data_fd) != 0) {
             snprintf(msg, sizeof msg, "could not hand the decoded mesh back (pipe closed)");
             rc = -1;
         }
@@ -314,6 +322,7 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
                        h.num_faces == 0)) {
         r = jd_fail(err, JD_ERR_FORMAT, "%s: decoder returned an implausible mesh header", d.path);
     }
+    if (r == JD_OK) st.declared_faces = h.faces_read;
     uint32_t *idx32 = NULL;
     if (r == JD_OK) {
         out->num_vertices = h.num_vertices;

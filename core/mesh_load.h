@@ -23,7 +23,8 @@ typedef struct jd_load_desc {
     int timeout_ms;             /* [1500] wall time for the whole decode */
     size_t decode_memory_bytes; /* [192 MiB] address space the decoder may add */
     int allow_32bit_indices;    /* the GL device has OES_element_index_uint */
-    int keep_face_order;        /* [0: triangles reordered for the GPU's vertex cache and overdraw] */
+    int keep_face_order;        /* [0: triangles longer than a twelfth of the mesh split, and reordered for the
+                                   GPU's vertex cache and overdraw] 1: the file's triangles as they are */
     int keep_uvs;               /* [0: texture coordinates are dropped in the decoder unless a colour
                                    texture needs them] 1: jd_mesh.uvs has them (jade convert keeps them) */
     int max_texture_size;       /* [1024, JD_TEXTURE_MEDIUMP_SIDE] a colour texture's largest side once
@@ -54,7 +55,8 @@ typedef struct jd_file_medium {
 typedef struct jd_load_stats {
     double decode_ms;   /* fork to last byte received */
     size_t file_bytes;
-    uint32_t declared_faces;
+    uint32_t declared_faces; /* the file's triangles as read, before coarse ones were split (its header's
+                                count where loading stopped before decoding) */
     int format;         /* jd_mesh_format: Draco, glTF, OBJ, PLY or STL, by content */
     char material[32];  /* a jade material the file names (glTF extras.jade_material), or "" */
     jd_file_medium medium; /* flags 0 when the file describes none */

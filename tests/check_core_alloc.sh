@@ -2,11 +2,12 @@
 # The core never calls the heap itself: no object in libjade_core references
 # an allocator, except the decoders (the Draco shim, the glTF reader, the PLY
 # strip and OBJ comment rewriters, the texture decoder and its PNG and JPEG
-# decoders, the OBJ material reader and the decoded arrays they share), which
+# decoders, the OBJ material reader and the decoded arrays they share and
+# split where coarse), which
 # the core runs only in the sandboxed child process during loading (the
 # program's picture reader uses the PNG decoder too, outside any frame).
 lib=$1
-bad=$(nm -A "$lib" 2>/dev/null | grep -v -E '(draco_shim|gltf_read|mesh_arrays|ply_strips|obj_check|texture_decode|png_decode|jpeg_decode|obj_material|file_beside)' | grep -E ' U (malloc|calloc|realloc|free|aligned_alloc|posix_memalign|strdup|_Znwm|_Znam|_ZdlPv|_ZdaPv|fopen)$')
+bad=$(nm -A "$lib" 2>/dev/null | grep -v -E '(draco_shim|gltf_read|mesh_arrays|mesh_subdivide|ply_strips|obj_check|texture_decode|png_decode|jpeg_decode|obj_material|file_beside)' | grep -E ' U (malloc|calloc|realloc|free|aligned_alloc|posix_memalign|strdup|_Znwm|_Znam|_ZdlPv|_ZdaPv|fopen)$')
 objects=$(nm -A "$lib" 2>/dev/null | cut -d: -f2 | sort -u | wc -l)
 if [ -n "$bad" ]; then
     echo "core objects reference the heap:"
