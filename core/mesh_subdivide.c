@@ -20,6 +20,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mesh.h"
+
 /* An edge's midpoint, found by its two vertex indices. */
 typedef struct edge_map {
     uint64_t *keys; /* (lo << 32 | hi) + 1; 0: empty */
@@ -209,22 +211,13 @@ int jd_mesh_arrays_subdivide(jd_mesh_arrays *m, uint32_t max_vertices, uint32_t 
      * new vertices carry the shading the corners gave, not their flat
      * faces' (a smooth low-poly shape stays smooth). */
     if (!m->nrm) {
-        m->nrm = calloc(n3 ? n3 : 1, sizeof(float));
+        m->nrm = malloc(sizeof(float) * (n3 ? n3 : 1));
         if (!m->nrm) return -1;
-        for (size_t t = 0; t < m->nf; t++) {
-            const uint32_t *v = m->idx + 3 * t;
-            const float *a = m->pos + 3 * (size_t)v[0], *b = m->pos + 3 * (size_t)v[1], *c = m->pos + 3 * (size_t)v[2];
-            float u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-            float n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-            for (int k = 0; k < 3; k++)
-                for (int j = 0; j < 3; j++) m->nrm[3 * (size_t)v[k] + j] += n[j];
-        }
-        /* Unit length, so a midpoint takes the mean direction. */
-        for (size_t i = 0; i < n3; i += 3) {
-            float *n = m->nrm + i, l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            if (l > 1e-20f && isfinite(l))
-                for (int j = 0; j < 3; j++) n[j] /= l;
-        }
+        /* The parent's own normals, over these arrays (unit length: a
+         * midpoint takes the mean direction). */
+        jd_mesh view = {.num_vertices = m->nv, .num_indices = 3 * m->nf, .positions = m->pos, .normals = m->nrm,
+                        .indices = m->idx, .index_size = 4};
+        jd_mesh_compute_normals(&view);
     }
     for (int i = 0; i < 16; i++) {
         int r = pass(m, limit2, cap_v, cap_f);
