@@ -74,7 +74,9 @@ void jd_mesh_albedo_at(const jd_mesh *m, uint32_t tri, float u, float v, float o
 
 /* A coarse stand-in made by vertex clustering on a grid of `cells` per axis,
  * for passes whose output is low-resolution or blurred anyway (cube capture,
- * light depth, the spread funnel). 16-bit indices always. */
+ * light depth, the spread funnel): up to two clusters a cell, the vertices
+ * facing with the cell's first one and those facing away (the two sides of
+ * a part thinner than a cell). 16-bit indices always. */
 jd_result jd_mesh_build_proxy(const jd_mesh *src, int cells, jd_arena *a, jd_mesh *out,
                               jd_error *err);
 

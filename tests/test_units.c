@@ -85,6 +85,52 @@ static void test_mesh(void)
           "32-bit indices refused without the extension: %s", err.msg);
 }
 
+/* A slab thinner than a proxy cell, its top and underside gridded alike: the
+ * proxy keeps the two sides apart (their normals summed would cancel, and
+ * the light map's irradiance, n.l of the proxy's normals, came out at half
+ * or less on such a floor), each side at its own height. */
+static void test_proxy_thin(void)
+{
+    static unsigned char mem[1 << 16];
+    jd_arena a;
+    jd_error err = {0};
+    jd_arena_init(&a, mem, sizeof mem);
+    enum { N = 5 }; /* vertices per side of each grid */
+    float pos[2 * N * N * 3], nrm[2 * N * N * 3];
+    uint32_t idx[2 * (N - 1) * (N - 1) * 6];
+    uint32_t k = 0;
+    for (int side = 0; side < 2; side++)
+        for (int j = 0; j < N; j++)
+            for (int i = 0; i < N; i++) {
+                int v = side * N * N + j * N + i;
+                pos[3 * v] = 10.0f * (float)i / (N - 1);
+                pos[3 * v + 1] = side ? -0.1f : 0.1f;
+                pos[3 * v + 2] = 10.0f * (float)j / (N - 1);
+                nrm[3 * v] = nrm[3 * v + 2] = 0.0f;
+                nrm[3 * v + 1] = side ? -1.0f : 1.0f;
+                if (i + 1 < N && j + 1 < N) {
+                    uint32_t a0 = (uint32_t)v, a1 = a0 + 1, b0 = a0 + N, b1 = b0 + 1;
+                    uint32_t t[6] = {a0, b0, b1, a0, b1, a1}; /* +y; the underside reversed */
+                    for (int q = 0; q < 6; q++) idx[k++] = side ? t[q % 3 == 1 ? q + 1 : q % 3 == 2 ? q - 1 : q] : t[q];
+                }
+            }
+    jd_mesh m = {0};
+    m.num_vertices = 2 * N * N;
+    m.positions = pos;
+    m.normals = nrm;
+    CHECK(jd_mesh_set_indices(&m, idx, k, 0, &a, &err) == JD_OK, "slab indices");
+    jd_mesh_compute_bounds(&m);
+    jd_mesh proxy;
+    CHECK(jd_mesh_build_proxy(&m, 4, &a, &proxy, &err) == JD_OK, "slab proxy: %s", err.msg);
+    int apart = proxy.num_vertices > 0 && proxy.num_indices > 0;
+    for (uint32_t v = 0; v < proxy.num_vertices; v++) {
+        float y = proxy.positions[3 * v + 1], ny = proxy.normals[3 * v + 1];
+        apart &= (y > 0.09f && ny > 0.99f) || (y < -0.09f && ny < -0.99f);
+    }
+    CHECK(apart, "a slab thinner than a cell keeps both sides in its proxy (%u vertices, %u triangles)",
+          proxy.num_vertices, proxy.num_indices / 3);
+}
+
 /* A cube wound inside out is turned round; its normals, from a file that
  * agrees with the old winding, follow; a flat sheet is left as it is. */
 static void test_orientation(void)
@@ -339,6 +385,7 @@ int main(void)
     test_math();
     test_mesh();
     test_orientation();
+    test_proxy_thin();
     test_materials();
     test_draco_header();
     test_sh();
