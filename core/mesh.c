@@ -186,39 +186,51 @@ jd_result jd_mesh_build_proxy(const jd_mesh *src, int cells, jd_arena *a, jd_mes
     size_t top = jd_arena_top_mark(a);
     size_t ncell = (size_t)cells * cells * cells;
     uint32_t *cell_of = jd_arena_alloc_top(a, sizeof(uint32_t) * src->num_vertices, 4, "proxy scratch", err);
-    /* Two clusters a cell (0 means unused) and each cluster's first vertex. */
+    /* Two clusters a cell (0 means unused) and each cluster's first vertex
+     * (65,536 at most: 16-bit indices). */
+    uint32_t nfirst = src->num_vertices < 65536 ? (src->num_vertices ? src->num_vertices : 1) : 65536;
     uint32_t *slot = jd_arena_alloc_top(a, sizeof(uint32_t) * 2 * ncell, 4, "proxy grid", err);
-    uint32_t *first = jd_arena_alloc_top(a, sizeof(uint32_t) * (src->num_vertices ? src->num_vertices : 1), 4,
-                                         "proxy scratch", err);
+    uint32_t *first = jd_arena_alloc_top(a, sizeof(uint32_t) * nfirst, 4, "proxy scratch", err);
     if (!cell_of || !slot || !first) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
-    memset(slot, 0, sizeof(uint32_t) * 2 * ncell);
 
     jd_vec3 ext = jd_v3_sub(src->bmax, src->bmin);
     float e = fmaxf(ext.x, fmaxf(ext.y, ext.z));
     float inv = e > 0 ? (float)cells / (e * 1.0001f) : 0.0f;
     uint32_t nv = 0;
-    for (uint32_t i = 0; i < src->num_vertices; i++) {
-        const float *p = src->positions + 3 * i, *n = src->normals + 3 * i;
-        int ix = (int)((p[0] - src->bmin.x) * inv), iy = (int)((p[1] - src->bmin.y) * inv),
-            iz = (int)((p[2] - src->bmin.z) * inv);
-        ix = ix < 0 ? 0 : ix >= cells ? cells - 1 : ix;
-        iy = iy < 0 ? 0 : iy >= cells ? cells - 1 : iy;
-        iz = iz < 0 ? 0 : iz >= cells ? cells - 1 : iz;
-        size_t c = 2 * (size_t)(ix + cells * (iy + cells * iz));
-        /* A cell holds the two sides of anything thinner than it (a floor
-         * slab, an ear, a thin tube): its vertices facing away from the
-         * cell's first one form a second cluster. Merged, the sides' normals
-         * cancel, and the light map's irradiance (n.l of the proxy's normal)
-         * came out at half or less on a 2 mm floor whose underside had as
-         * many vertices as its top; the merged sheet's depth lay midway
-         * between the sides. Where a cell's normals all lie within 90
-         * degrees of each other (smooth parts, box edges) nothing changes. */
-        if (slot[c]) {
-            const float *s = src->normals + 3 * first[slot[c] - 1];
-            if (n[0] * s[0] + n[1] * s[1] + n[2] * s[2] < 0.0f) c++;
+    /* A cell holds the two sides of anything thinner than it (a floor slab,
+     * an ear, a leaf): its vertices facing away from the cell's first one
+     * form a second cluster. Merged, the sides' normals cancel, and the
+     * light map's irradiance (n.l of the proxy's normal) came out at half or
+     * less on a 2 mm floor whose underside had as many vertices as its top;
+     * the merged sheet's depth lay midway between the sides. Where a cell's
+     * normals all lie within 90 degrees of each other (smooth parts, box
+     * edges) nothing changes. Where the second clusters would take the
+     * proxy past 16-bit indices, one cluster a cell, as before. */
+    for (int split = 1; split >= 0; split--) {
+        memset(slot, 0, sizeof(uint32_t) * 2 * ncell);
+        nv = 0;
+        uint32_t i = 0;
+        for (; i < src->num_vertices; i++) {
+            const float *p = src->positions + 3 * i, *n = src->normals + 3 * i;
+            int ix = (int)((p[0] - src->bmin.x) * inv), iy = (int)((p[1] - src->bmin.y) * inv),
+                iz = (int)((p[2] - src->bmin.z) * inv);
+            ix = ix < 0 ? 0 : ix >= cells ? cells - 1 : ix;
+            iy = iy < 0 ? 0 : iy >= cells ? cells - 1 : iy;
+            iz = iz < 0 ? 0 : iz >= cells ? cells - 1 : iz;
+            size_t c = 2 * (size_t)(ix + cells * (iy + cells * iz));
+            if (split && slot[c]) {
+                const float *s = src->normals + 3 * first[slot[c] - 1];
+                if (n[0] * s[0] + n[1] * s[1] + n[2] * s[2] < 0.0f) c++;
+            }
+            if (!slot[c]) {
+                if (nv == nfirst) break;
+                first[nv] = i;
+                slot[c] = ++nv;
+            }
+            cell_of[i] = slot[c] - 1;
         }
-        if (!slot[c]) { first[nv] = i; slot[c] = ++nv; }
-        cell_of[i] = slot[c] - 1;
+        if (i == src->num_vertices && nv <= 65535) break;
+        nv = 65536; /* too many: again without the split, or the error below */
     }
     if (nv > 65535) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_LIMIT, "proxy has too many vertices"); }
 

@@ -129,6 +129,28 @@ static void test_proxy_thin(void)
     }
     CHECK(apart, "a slab thinner than a cell keeps both sides in its proxy (%u vertices, %u triangles)",
           proxy.num_vertices, proxy.num_indices / 3);
+
+    /* Two opposed vertices in each of 40,000 cells: the sides kept apart
+     * would take 80,000 vertices, past 16-bit indices; the proxy is made
+     * with one cluster a cell instead of failing. */
+    enum { CELLS = 40000 };
+    static float bp[2 * CELLS * 3], bn[2 * CELLS * 3];
+    static unsigned char big[6 << 20];
+    for (int c = 0; c < CELLS; c++)
+        for (int side = 0; side < 2; side++) {
+            float *p = bp + 3 * (2 * c + side), *n = bn + 3 * (2 * c + side);
+            p[0] = (float)(c % 64) + 0.5f, p[1] = (float)((c / 64) % 64) + 0.5f, p[2] = (float)(c / 4096) + 0.5f;
+            n[0] = n[2] = 0.0f, n[1] = side ? -1.0f : 1.0f;
+        }
+    jd_mesh b = {0};
+    b.num_vertices = 2 * CELLS;
+    b.positions = bp;
+    b.normals = bn;
+    b.bmin = (jd_vec3){0, 0, 0};
+    b.bmax = (jd_vec3){64, 64, 64};
+    jd_arena_init(&a, big, sizeof big);
+    CHECK(jd_mesh_build_proxy(&b, 64, &a, &proxy, &err) == JD_OK && proxy.num_vertices == CELLS,
+          "past 65,535 clusters the proxy takes one a cell (%u vertices): %s", proxy.num_vertices, err.msg);
 }
 
 /* A cube wound inside out is turned round; its normals, from a file that
