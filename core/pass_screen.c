@@ -57,6 +57,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
             glUniform3fv(p->wide_x, 1, wid);
             glUniform3fv(p->spec_x, 1, spec);
         }
+        if (p->keep >= 0) glUniform3fv(p->keep, 2, &r->keep[0][0]);
         glUniform4fv(p->light_map_v, 1, f->light_map);
         glUniform3f(p->light_dir_v, f->light_dir.x, f->light_dir.y, f->light_dir.z);
         if (p->slab >= 0 || p->slab_v >= 0) { /* unit 6: the wide buffer's, which these programs do not read */

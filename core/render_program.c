@@ -112,6 +112,7 @@ static void shade_locations(shade_prog *p)
     p->slab_v = glGetUniformLocation(id, "u_slab_v");
     p->slab_scale = glGetUniformLocation(id, "u_slab_scale");
     p->slab_scale_v = glGetUniformLocation(id, "u_slab_scale_v");
+    p->keep = glGetUniformLocation(id, "u_keep");
 }
 
 /* The constant trip count the diffusion program is built with, or 0 for

@@ -91,14 +91,21 @@ void jdr_free_target(target *t)
 }
 
 /* One vertex as uploaded: the position centred and scaled to the unit
- * sphere (coordinates small for fp16 varyings), the normal of unit length
- * (the vertex stages take it as it comes: a normalize per vertex fewer in
- * every program; (0, 0, 1) for one of no length), and for a mesh with
- * colours its texture coordinates and colour (4 bytes, normalised). */
-static void pack_vertex(uint8_t *o, const jd_mesh *m, uint32_t i, jd_vec3 c, float inv_r)
+ * sphere (coordinates small for fp16 varyings), the normal ((0, 0, 1) for
+ * one of no length) of length 1 + t / 2 where the part is t thick under the
+ * vertex (thick: in the mesh's units, scaled with the positions, at most 2,
+ * the sphere's width; NULL: length 1): the thickness rides in the normal,
+ * which the vertex stages normalise, and no program's vertex layout grows
+ * (mesh_thickness.c). For a mesh with colours its texture coordinates and
+ * colour (4 bytes, normalised). */
+static void pack_vertex(uint8_t *o, const jd_mesh *m, const float *thick, uint32_t i, jd_vec3 c, float inv_r)
 {
     const float *p = m->positions + 3 * (size_t)i, *n = m->normals + 3 * (size_t)i;
     jd_vec3 u = jd_unit_normal(n);
+    if (thick) {
+        float t = thick[i] * inv_r, k = 1.0f + 0.5f * (t < 2.0f ? t : 2.0f);
+        u.x *= k, u.y *= k, u.z *= k;
+    }
     float v[8] = {(p[0] - c.x) * inv_r, (p[1] - c.y) * inv_r, (p[2] - c.z) * inv_r, u.x, u.y, u.z, 0.0f, 0.0f};
     if (!m->colors) {
         memcpy(o, v, 24);
@@ -114,14 +121,14 @@ static void pack_vertex(uint8_t *o, const jd_mesh *m, uint32_t i, jd_vec3 c, flo
 
 int jdr_vertex_stride(const jd_mesh *m) { return m->colors ? JDR_STRIDE_COLOUR : JDR_STRIDE_PLAIN; }
 
-jd_result jdr_upload_mesh(const jd_mesh *m, jd_vec3 c, float inv_r, GLuint *vbo, GLuint *ibo,
+jd_result jdr_upload_mesh(const jd_mesh *m, const float *thick, jd_vec3 c, float inv_r, GLuint *vbo, GLuint *ibo,
                              jd_arena *a, jd_error *err)
 {
     size_t top = jd_arena_top_mark(a);
     size_t stride = (size_t)jdr_vertex_stride(m);
     uint8_t *v = jd_arena_alloc_top(a, stride * m->num_vertices, 16, "vertex upload scratch", err);
     if (!v) return JD_ERR_BUDGET;
-    for (uint32_t i = 0; i < m->num_vertices; i++) pack_vertex(v + stride * i, m, i, c, inv_r);
+    for (uint32_t i = 0; i < m->num_vertices; i++) pack_vertex(v + stride * i, m, thick, i, c, inv_r);
     glGenBuffers(1, vbo);
     glBindBuffer(GL_ARRAY_BUFFER, *vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(stride * m->num_vertices), v, GL_STATIC_DRAW);
@@ -136,7 +143,7 @@ jd_result jdr_upload_mesh(const jd_mesh *m, jd_vec3 c, float inv_r, GLuint *vbo,
 /* The mesh as chunks of at most 65,535 distinct vertices each, in triangle
  * order (which meshoptimizer made local: few vertices repeat across
  * chunks). Vertex and index data for every chunk go into one buffer each. */
-jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c, float inv_r, jd_arena *a,
+jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, const float *thick, jd_vec3 c, float inv_r, jd_arena *a,
                                      jd_error *err)
 {
     const uint32_t limit = 65535;
@@ -175,7 +182,7 @@ jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c, f
         for (int k = 0; k < 3; k++) {
             if (local[tri[k]] < 0) {
                 if (nv == v_cap) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_BUDGET, "mesh chunks: vertex copies over the scratch"); }
-                pack_vertex(v + stride * nv++, m, tri[k], c, inv_r);
+                pack_vertex(v + stride * nv++, m, thick, tri[k], c, inv_r);
                 ch->vertices++;
                 local[tri[k]] = (int32_t)n_used;
                 used[n_used++] = tri[k];

@@ -1,4 +1,5 @@
 #include "renderer_internal.h"
+#include "mesh_thickness.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -148,12 +149,31 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
         r->albedo_partial = m->colors[4 * (size_t)i + 3] != 255;
     r->vstride = jdr_vertex_stride(m);
     while (glGetError() != GL_NO_ERROR) {}
-    if ((chunked ? (res = jdr_upload_mesh_chunked(r, m, c, 1.0f / radius, a, err))
-                 : (res = jdr_upload_mesh(m, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err))) ||
-        (res = jdr_upload_mesh(&r->proxy, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a, err)) ||
-        (res = jdr_upload_mesh(&r->capture_proxy, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a, err)) ||
-        (res = jdr_upload_albedo(r, m, a, err)))
+    /* The part's thickness under each vertex of the mesh and of the light
+     * map's proxy (whose vertices the Mali-400 path's levels are summed
+     * at), riding in their normals' length (render_target.c): full's light
+     * on thin parts (pass_light.c, update_slab). Where the grid does not fit
+     * the budget, every part counts as the whole object's width: the
+     * half-space's light, as before. */
+    size_t thick_top = jd_arena_top_mark(a);
+    float *thick = jd_arena_alloc_top(a, sizeof(float) * m->num_vertices, 16, "thickness", err);
+    float *pthick = jd_arena_alloc_top(a, sizeof(float) * r->proxy.num_vertices, 16, "thickness", err);
+    if (!thick || !pthick) { jd_arena_top_reset(a, thick_top); return JD_ERR_BUDGET; }
+    for (int k = 0; k < 2; k++) {
+        const jd_mesh *tm = k ? &r->proxy : m;
+        float *out = k ? pthick : thick;
+        if (jd_mesh_thickness(tm, 2.0f * radius, a, out, NULL))
+            for (uint32_t i = 0; i < tm->num_vertices; i++) out[i] = 2.0f * radius;
+    }
+    if ((chunked ? (res = jdr_upload_mesh_chunked(r, m, thick, c, 1.0f / radius, a, err))
+                 : (res = jdr_upload_mesh(m, thick, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err))) ||
+        (res = jdr_upload_mesh(&r->proxy, pthick, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a, err)) ||
+        (res = jdr_upload_mesh(&r->capture_proxy, NULL, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a, err)) ||
+        (res = jdr_upload_albedo(r, m, a, err))) {
+        jd_arena_top_reset(a, thick_top);
         goto fail;
+    }
+    jd_arena_top_reset(a, thick_top);
     r->tail_tex = jdr_new_texture(TAIL_SIZE, 1, GL_LINEAR);
     r->slab_tex = jdr_new_texture(SLAB_SIZE, 1, GL_LINEAR);
     r->target_bytes += (TAIL_SIZE + SLAB_SIZE) * 4;

@@ -57,7 +57,7 @@ typedef struct shade_prog {
     GLint amb_x, local_x, wide_x, spec_x; /* full's constant factors (shade.frag) */
     GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
     GLint albedo_norm, albedo_map, albedo_bias;
-    GLint slab, slab_v, slab_scale, slab_scale_v;
+    GLint slab, slab_v, slab_scale, slab_scale_v, keep;
     GLint soft_c; /* full: the exponential shadow map's exponent (light.glsl, jd_soft_lit) */
 } shade_prog;
 
@@ -104,6 +104,7 @@ struct jd_renderer {
     GLuint tail_tex;
     GLuint slab_tex;      /* full: the light a slab lets through, by thickness (pass_light.c) */
     float slab_range_mm;  /* the thickness at the table's end */
+    float keep[2][3];     /* full: a lit face's levels kept by a part t mm thick, 1 - a 2^(-b t) (pass_light.c) */
     /* The model's own colours (mesh->colors): the vertex layout, and its
      * texture (0: none) with its size on the GPU and its texels per world
      * unit of the surface (for the entry's mip level). */
@@ -215,9 +216,9 @@ jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_dept
                              const char *what, jd_error *err);
 jd_result jdr_make_cube_target(jd_renderer *r, target *faces, int size, const char *what, jd_error *err);
 void jdr_free_target(target *t);
-jd_result jdr_upload_mesh(const jd_mesh *m, jd_vec3 c, float inv_r, GLuint *vbo, GLuint *ibo,
+jd_result jdr_upload_mesh(const jd_mesh *m, const float *thick, jd_vec3 c, float inv_r, GLuint *vbo, GLuint *ibo,
                              jd_arena *a, jd_error *err);
-jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, jd_vec3 c, float inv_r, jd_arena *a,
+jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, const float *thick, jd_vec3 c, float inv_r, jd_arena *a,
                                      jd_error *err);
 
 /* render_draw.c */

@@ -15,6 +15,8 @@ void main()
     // N.L Ft(N.L) / c, c = (1 - F0) 20/21 the hemispherical mean of Ft: the
     // reference's irradiance per unit area of surface. At most 21/20: stored
     // over that, as a square root, so dim light keeps its precision in 8 bits.
-    float ndl = max(dot(a_normal, u_light_dir), 0.0);
+    // The proxy's normal carries the part's thickness in its length
+    // (render_target.c): normalised here.
+    float ndl = max(dot(normalize(a_normal), u_light_dir), 0.0);
     v_irr = sqrt(clamp(ndl * jd_fresnel_tc(ndl, u_f0) * (20.0 / 21.0), 0.0, 1.0));
 }

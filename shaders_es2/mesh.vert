@@ -14,6 +14,8 @@ uniform mediump vec3 u_eye; // shared with the fragment stage: precisions must m
 uniform vec2 u_shadow_bias;  // light-depth units: per unit of the surface's slope to the light, and always
 #if JD_WIDE_ONLY
 varying vec3 v_pos;
+varying vec3 v_keep;        // the levels' share a lit face keeps (below)
+uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 #else
 varying vec3 v_view;        // towards the eye, unit length: the fragment stage takes it as it comes
 #endif
@@ -45,6 +47,9 @@ varying vec2 v_uv;
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 uniform float u_f0;
 varying vec2 v_fresnel;
+#endif
+#if JD_FULL && (JD_VERTEX_DIFFUSION || JD_WIDE_ONLY)
+uniform vec3 u_keep[2];     // a lit face's levels kept by a part t thick: 1 - a 2^(-b t) (pass_light.c)
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
 // Where the vertex stage can read textures, the full mode's light-space
@@ -109,13 +114,28 @@ void main()
     v_uv = a_uv;
 #endif
 #endif
+    // The normal's length carries the part's thickness under the vertex,
+    // t = 2 (|n| - 1) (render_target.c, mesh_thickness.c).
+    vec3 an = normalize(a_normal);
+    float thick = 2.0 * (length(a_normal) - 1.0);
+#if JD_FULL && (JD_VERTEX_DIFFUSION || JD_WIDE_ONLY)
+    // On a lit face, the share of the levels' light that a part this thick
+    // keeps (its slab's R(t) of the half-space's, pass_light.c: 1 - a
+    // 2^(-b t), per channel, fitted on the CPU).
+    vec3 keep = clamp(1.0 - u_keep[0] * exp2(-u_keep[1] * thick), 0.0, 1.0);
+#endif
+#if JD_WIDE_ONLY
+    vec3 nk = an;
+    if (dot(nk, u_eye - a_position) < 0.0) nk = -nk;
+    v_keep = mix(vec3(1.0), keep, step(0.0, dot(nk, u_light_dir)));
+#endif
 #if JD_WIDE_ONLY
     v_pos = a_position;
 #else
     vec3 vf = normalize(u_eye - a_position);
     v_view = vf;
 #endif
-    v_normal = a_normal;
+    v_normal = an;
     gl_Position = u_mvp * vec4(a_position, 1.0);
     vec4 sp = u_light_tex * vec4(a_position, 1.0);
     v_shadow = sp.xyzz;
@@ -127,17 +147,17 @@ void main()
     v_shadow.z = sp.z * u_soft_c.x - 0.350;
 #else
     // The light looks down its +z: a normal facing it has a negative z there.
-    float cl = clamp(abs(2.0 * (u_light_tex * vec4(a_normal, 0.0)).z), 0.2, 1.0);
+    float cl = clamp(abs(2.0 * (u_light_tex * vec4(an, 0.0)).z), 0.2, 1.0);
     v_shadow.z -= u_shadow_bias.y + u_shadow_bias.x * (1.0 + sqrt(1.0 - cl * cl) / cl);
 #endif
 #if JD_FULL && !JD_WIDE_ONLY
-    vec3 nf = a_normal;
+    vec3 nf = an;
     if (dot(nf, vf) < 0.0) nf = -nf;
     float ndl_v = max(dot(nf, u_light_dir), 0.0);
     v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_f0), jd_fresnel_tc(dot(nf, vf), u_f0));
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
-    vec3 nv = a_normal;
+    vec3 nv = an;
     if (dot(nv, u_eye - a_position) < 0.0) nv = -nv;
     float ndl = dot(nv, u_light_dir_v);
     // The shadow test without a branch round it: jd_lit_ramp takes it only
@@ -145,6 +165,9 @@ void main()
     // 614 -> 477 cycles; Adreno 3xx 628 -> 554).
     float lit = jd_lit_ramp(ndl, jd_soft_lit(u_depth_v, v_shadow.xyz));
     v_wide = jd_diffused(u_lv0_v, u_lv1_v, u_lv2_v, u_lv3_v, u_lv4_v, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map_v.w, lit);
+    // A lit face of a thin part returns the slab's R(t), not the
+    // half-space's: what went deep left through the far side.
+    v_wide *= mix(vec3(1.0), keep, step(0.0, ndl));
 #ifndef JD_NO_SLAB
     // A face turned from the light takes what crossed the part from the lit
     // face above it.
@@ -152,7 +175,7 @@ void main()
 #endif
 #endif
 #if JD_TRANSLUCENT
-    vec3 n = a_normal;
+    vec3 n = an;
     vec3 view = vf;
     if (dot(n, view) < 0.0) n = -n;
     // Thickness is read at a point moved inward, so the surface does not

@@ -16,6 +16,7 @@ uniform vec4 u_light_map;    // light-depth texels per side, their inverse, Schl
 uniform sampler2D u_depth;   // light depth, packed; irradiance in alpha (full: the exponential shadow map)
 #if JD_WIDE_ONLY
 varying vec3 v_pos;
+varying vec3 v_keep;         // the levels' share a lit face of a thin part keeps (mesh.vert)
 #else
 varying vec3 v_view;         // towards the eye, unit length at the vertices (mesh.vert)
 #endif
@@ -201,6 +202,10 @@ void main()
     // As the vertex stage's (mesh.vert): through thin parts, to faces
     // turned from the light.
     wide += max(-lit, 0.0) * jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale);
+#endif
+#if JD_WIDE_ONLY
+    // As the vertex stage's: a lit face of a thin part returns R(t).
+    wide *= v_keep;
 #endif
 #endif
 #if JD_WIDE_ONLY

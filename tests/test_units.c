@@ -6,6 +6,7 @@
 
 #include "arena.h"
 #include "check.h"
+#include "mesh_thickness.h"
 #include "draco_header.h"
 #include "frame_cost.h"
 #include "gl_caps.h"
@@ -129,6 +130,20 @@ static void test_proxy_thin(void)
     }
     CHECK(apart, "a slab thinner than a cell keeps both sides in its proxy (%u vertices, %u triangles)",
           proxy.num_vertices, proxy.num_indices / 3);
+
+    /* The part's thickness along each vertex's inward normal: 0.2 from
+     * either sheet; with the underside's triangles gone, the top's rays
+     * leave through nothing (the cap) and the underside's still meet the
+     * top. */
+    float th[2 * N * N];
+    int thick_ok = jd_mesh_thickness(&m, 5.0f, &a, th, &err) == JD_OK;
+    for (int v = 0; v < 2 * N * N; v++) thick_ok &= fabsf(th[v] - 0.2f) < 1e-4f;
+    CHECK(thick_ok, "a 0.2 thick slab measures 0.2 under every vertex (%g, %g)", (double)th[0], (double)th[N * N]);
+    m.num_indices = k / 2;
+    thick_ok = jd_mesh_thickness(&m, 5.0f, &a, th, &err) == JD_OK;
+    for (int v = 0; v < 2 * N * N; v++) thick_ok &= fabsf(th[v] - (v < N * N ? 5.0f : 0.2f)) < 1e-4f;
+    CHECK(thick_ok, "one sheet: the cap above it, 0.2 below (%g, %g)", (double)th[0], (double)th[N * N]);
+    m.num_indices = k;
 
     /* Two opposed vertices in each of 40,000 cells: the sides kept apart
      * would take 80,000 vertices, past 16-bit indices; the proxy is made
