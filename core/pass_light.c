@@ -7,6 +7,27 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Least squares of log2(1 - k) on a line in d, over the samples where
+ * 0.01 < 1 - k < 1: k(d) = 1 - a 2^(-b d), which the vertex stages
+ * evaluate with no texture read. b comes out per mm; a = 0 where the
+ * samples give no decay (nothing is lost: k = 1). */
+static void fit_keep(const double *d, const double *k, int n, double *a, double *b)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0, sn = 0;
+    for (int i = 0; i < n; i++) {
+        double lose = 1.0 - k[i];
+        if (lose > 0.01 && lose < 1.0) {
+            double y = log2(lose);
+            sx += d[i], sy += y, sxx += d[i] * d[i], sxy += d[i] * y, sn += 1.0;
+        }
+    }
+    double den = sn * sxx - sx * sx;
+    *b = den > 0.0 ? -(sn * sxy - sx * sy) / den : 0.0;
+    double la = sn > 0.0 ? (sy + *b * sx) / sn : -30.0;
+    *a = sn >= 2.0 && *b > 0.0 ? fmin(exp2(la), 1.0) : 0.0;
+    if (*a == 0.0) *b = 0.0;
+}
+
 /* The light a part d mm thick lets through to its far face, which the
  * levels' Gaussians of the depth gap do not give: a slab lit on one face
  * sends T(d) of the light out of the other (the multipole, slab.h; the
@@ -23,47 +44,49 @@ static void update_slab(jd_renderer *r, const frame_params *f)
     const jd_diffusion_fit *fit = &r->fit;
     float range = 4.0f * fit->sigma_mm[DIFF_LOCAL + (r->diff_levels > 0 ? r->diff_levels - 1 : 0)];
     double slack = 2.0 * f->mm_per_world * f->light_map[3]; /* depth units to mm */
-    /* The light through a part d mm thick (jd_slab_light); and on a lit
-     * face of a part d mm thick, the share of the levels' light that makes
-     * the face return the slab's R(d) of the half-space's total (the light
-     * that went deep leaves through the far side; the local part, the
-     * Gaussians finer than a level texel, taken as light that did not):
-     * keep(d) = (R(d) Rd - local) / levels, fitted per channel as
-     * 1 - a 2^(-b d) (least squares of log2(1 - keep) on a line, where
-     * 0.01 < 1 - keep < 1), which the vertex stages evaluate with no
-     * texture read (VideoCore IV's vertex program went from 161 to 615
-     * instructions with one more). d: the part's thickness along the
-     * normal (mesh_thickness.c), as the reference takes it. */
+    /* On a lit face of a part d mm thick, the share of the half-space's
+     * light that makes the face return the slab's R(d) (the light that
+     * went deep leaves through the far side): the reference's profile on
+     * a slab loses at every radius, so the local part (the Gaussians finer
+     * than a level texel) loses with the levels (with the levels alone
+     * taking the loss, a thin part's shadow edge came out 0.82 of the
+     * reference's width). The local part's share rides in full's Fresnel
+     * term, one number a vertex: green's R(d) / Rd, for all channels;
+     * green's levels keep the same, red's and blue's make up their
+     * channel's R(d) Rd with the local part at green's share. Each fitted
+     * as 1 - a 2^(-b d) (fit_keep; VideoCore IV's vertex program went from
+     * 161 to 615 instructions with a table read for it instead). d: the
+     * part's thickness along the normal (mesh_thickness.c), as the
+     * reference takes it. */
     unsigned char px[SLAB_SIZE * 4];
-    double wide[3] = {0, 0, 0}, sx[3] = {0}, sy[3] = {0}, sxx[3] = {0}, sxy[3] = {0}, sn[3] = {0};
-    for (int c = 0; c < 3; c++)
-        for (int k = 0; k < r->diff_levels; k++) wide[c] += fit->weight[DIFF_LOCAL + k][c];
+    double dd[SLAB_SIZE], refl[3][SLAB_SIZE];
     for (int i = 0; i < SLAB_SIZE; i++) {
         double d = (i + 0.5) / SLAB_SIZE * range, q = fmax(d - slack, 0.0);
+        dd[i] = d;
         for (int c = 0; c < 3; c++) {
-            double refl, trans, levels = 0.0, rd = f->dipole.rd_total[c];
-            jd_slab_totals(&f->dipole, c, d, &refl, &trans);
+            double trans, levels = 0.0, rd = f->dipole.rd_total[c];
+            jd_slab_totals(&f->dipole, c, d, &refl[c][i], &trans);
             for (int k = 0; k < r->diff_levels; k++) {
                 double u = q / fit->sigma_mm[DIFF_LOCAL + k];
                 levels += fit->weight[DIFF_LOCAL + k][c] * exp(-0.5 * u * u);
             }
             double add = 21.0 / 20.0 * (trans * rd - levels);
             px[4 * i + c] = (unsigned char)lrint(255.0 * (add > 0.0 ? fmin(add, 1.0) : 0.0));
-            double lose = wide[c] > 0.0 ? 1.0 - (refl * rd - (rd - wide[c])) / wide[c] : 0.0;
-            if (lose > 0.01 && lose < 1.0) {
-                double y = log2(lose);
-                sx[c] += d, sy[c] += y, sxx[c] += d * d, sxy[c] += d * y, sn[c] += 1.0;
-            }
         }
         px[4 * i + 3] = 255;
     }
-    for (int c = 0; c < 3; c++) {
-        double den = sn[c] * sxx[c] - sx[c] * sx[c];
-        double b = den > 0.0 ? -(sn[c] * sxy[c] - sx[c] * sy[c]) / den : 0.0;
-        double la = sn[c] > 0.0 ? (sy[c] + b * sx[c]) / sn[c] : -30.0;
+    double kg[SLAB_SIZE], kc[SLAB_SIZE];
+    for (int n = 0; n < 3; n++) {
+        int c = (n + 1) % 3;
+        double a, b, rd = f->dipole.rd_total[c], wide = 0.0;
+        for (int k = 0; k < r->diff_levels; k++) wide += fit->weight[DIFF_LOCAL + k][c];
+        for (int i = 0; i < SLAB_SIZE; i++)
+            kc[i] = c == 1 ? refl[c][i] : wide > 0.0 ? (refl[c][i] * rd - (rd - wide) * kg[i]) / wide : 1.0;
+        fit_keep(dd, kc, SLAB_SIZE, &a, &b);
+        if (c == 1)
+            for (int i = 0; i < SLAB_SIZE; i++) kg[i] = 1.0 - a * exp2(-b * dd[i]);
         /* per world unit: the shaders take the thickness in the sphere's units */
-        r->keep[0][c] = sn[c] >= 2.0 && b > 0.0 ? (float)fmin(exp2(la), 1.0) : 0.0f;
-        r->keep[1][c] = (float)(b * f->mm_per_world);
+        r->keep[0][c] = (float)a, r->keep[1][c] = (float)(b * f->mm_per_world);
     }
     r->slab_range_mm = range;
     glBindTexture(GL_TEXTURE_2D, r->slab_tex);

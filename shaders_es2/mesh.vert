@@ -41,15 +41,16 @@ varying vec2 v_uv;
 #if JD_FULL && !JD_WIDE_ONLY
 // full's two Fresnel factors per vertex (the fragment stage keeps the
 // normal's detail for the highlight and the shadow): the light's
-// transmitted in, times n.l, and the view's out. Meshes are dense beside
+// transmitted in, times n.l and the share a thin part keeps (below, green's
+// for all channels: pass_light.c); and the view's out. Meshes are dense beside
 // the pixels the boards shade (the default asset at 960x540: about one
 // vertex a fragment), and both factors are smooth.
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 uniform float u_f0;
 varying vec2 v_fresnel;
 #endif
-#if JD_FULL && (JD_VERTEX_DIFFUSION || JD_WIDE_ONLY)
-uniform vec3 u_keep[2];     // a lit face's levels kept by a part t thick: 1 - a 2^(-b t) (pass_light.c)
+#if JD_FULL
+uniform vec3 u_keep[2];     // a lit face's light kept by a part t thick: 1 - a 2^(-b t) (pass_light.c)
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
 // Where the vertex stage can read textures, the full mode's light-space
@@ -118,11 +119,11 @@ void main()
     // t = 2 (|n| - 1) (render_target.c, mesh_thickness.c).
     vec3 an = normalize(a_normal);
     float thick = 2.0 * (length(a_normal) - 1.0);
-#if JD_FULL && (JD_VERTEX_DIFFUSION || JD_WIDE_ONLY)
-    // On a lit face, the share of the levels' light that a part this thick
-    // keeps (its slab's R(t) of the half-space's, pass_light.c: 1 - a
-    // 2^(-b t), per channel, fitted on the CPU).
-    vec3 keep = clamp(1.0 - u_keep[0] * exp2(-u_keep[1] * thick), 0.0, 1.0);
+#if JD_FULL
+    // On a lit face, the share of the light that a part this thick keeps
+    // (its slab's R(t) of the half-space's, pass_light.c: 1 - a 2^(-b t),
+    // per channel, fitted on the CPU), the local part's and the levels'.
+    vec3 keep = 1.0 - u_keep[0] * exp2(-u_keep[1] * thick);
 #endif
 #if JD_WIDE_ONLY
     vec3 nk = an;
@@ -154,7 +155,8 @@ void main()
     vec3 nf = an;
     if (dot(nf, vf) < 0.0) nf = -nf;
     float ndl_v = max(dot(nf, u_light_dir), 0.0);
-    v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_f0), jd_fresnel_tc(dot(nf, vf), u_f0));
+    // n.l is 0 on a face turned from the light: keep counts only where lit.
+    v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_f0) * keep.g, jd_fresnel_tc(dot(nf, vf), u_f0));
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
     vec3 nv = an;

@@ -47,7 +47,7 @@ uniform vec3 u_amb_x;        // Rd_total x ambient x exposure
 uniform vec3 u_local_x;      // light colour x Rd's weight on the Gaussians finer than a level texel x exposure
 uniform vec3 u_wide_x;       // light colour x exposure (x 2 where the levels' sum is read halved)
 uniform vec3 u_spec_x;       // light colour x specular x exposure
-varying vec2 v_fresnel;      // n.l Ft(l)/c and Ft(v)/c, per vertex (mesh.vert)
+varying vec2 v_fresnel;      // n.l Ft(l)/c times a thin part's keep, and Ft(v)/c, per vertex (mesh.vert)
 #endif
 #if JD_VERTEX_DIFFUSION
 varying vec3 v_wide;         // the levels' light, per vertex (jd_diffused)
