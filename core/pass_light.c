@@ -33,12 +33,15 @@ static void fit_keep(const double *d, const double *k, int n, double *a, double 
  * sends T(d) of the light out of the other (the multipole, slab.h; the
  * reference carries the same across its thin parts), where the levels
  * give sum_k w_k G_k(d) for a point d below a uniformly lit face. The
- * table holds the difference per channel (times 21/20, the light map's
+ * table's rows hold the two per channel (times 21/20, the light map's
  * scale), over d from 0 to 4 sigma of the widest level: the shading adds
- * it, times the light that entered above (light.glsl, jd_slab_light), at
- * points that face away from the light. Added, not multiplied: the levels
- * also bring light from beside the point, which a factor on their sum
- * would scale with the thickness below. */
+ * T at the part's thickness less the levels at the depth gap, times the
+ * light that entered above (light.glsl, jd_slab_light), at points that
+ * face away from the light. Added, not multiplied: the levels also bring
+ * light from beside the point, which a factor on their sum would scale
+ * with the thickness below. Two rows, not their difference: a light
+ * slanted across a part crosses it longer than the part is thick, and the
+ * reference carries the light along the normal. */
 static void update_slab(jd_renderer *r, const frame_params *f)
 {
     const jd_diffusion_fit *fit = &r->fit;
@@ -58,7 +61,7 @@ static void update_slab(jd_renderer *r, const frame_params *f)
      * 161 to 615 instructions with a table read for it instead). d: the
      * part's thickness along the normal (mesh_thickness.c), as the
      * reference takes it. */
-    unsigned char px[SLAB_SIZE * 4];
+    unsigned char px[SLAB_SIZE * 8];
     double dd[SLAB_SIZE], refl[3][SLAB_SIZE];
     for (int i = 0; i < SLAB_SIZE; i++) {
         double d = (i + 0.5) / SLAB_SIZE * range, q = fmax(d - slack, 0.0);
@@ -70,10 +73,10 @@ static void update_slab(jd_renderer *r, const frame_params *f)
                 double u = q / fit->sigma_mm[DIFF_LOCAL + k];
                 levels += fit->weight[DIFF_LOCAL + k][c] * exp(-0.5 * u * u);
             }
-            double add = 21.0 / 20.0 * (trans * rd - levels);
-            px[4 * i + c] = (unsigned char)lrint(255.0 * (add > 0.0 ? fmin(add, 1.0) : 0.0));
+            px[4 * i + c] = (unsigned char)lrint(255.0 * fmin(21.0 / 20.0 * trans * rd, 1.0));
+            px[4 * (SLAB_SIZE + i) + c] = (unsigned char)lrint(255.0 * fmin(21.0 / 20.0 * levels, 1.0));
         }
-        px[4 * i + 3] = 255;
+        px[4 * i + 3] = 255, px[4 * (SLAB_SIZE + i) + 3] = 255;
     }
     double kg[SLAB_SIZE], kc[SLAB_SIZE];
     for (int n = 0; n < 3; n++) {
@@ -90,7 +93,7 @@ static void update_slab(jd_renderer *r, const frame_params *f)
     }
     r->slab_range_mm = range;
     glBindTexture(GL_TEXTURE_2D, r->slab_tex);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, SLAB_SIZE, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, SLAB_SIZE, 2, GL_RGBA, GL_UNSIGNED_BYTE, px);
 }
 
 /* The full mode's sum of Gaussians: the finest below a level texel (applied

@@ -183,8 +183,8 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     }
     jd_arena_top_reset(a, thick_top);
     r->tail_tex = jdr_new_texture(TAIL_SIZE, 1, GL_LINEAR);
-    r->slab_tex = jdr_new_texture(SLAB_SIZE, 1, GL_LINEAR);
-    r->target_bytes += (TAIL_SIZE + SLAB_SIZE) * 4;
+    r->slab_tex = jdr_new_texture(SLAB_SIZE, 2, GL_LINEAR);
+    r->target_bytes += (TAIL_SIZE + 2 * SLAB_SIZE) * 4;
     r->tail_key[0] = -1.0f; /* no table yet */
     r->mesh_index_type = m->index_size == 2 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
     static const float quad[] = {-1, -1, 1, -1, -1, 1, 1, 1};

@@ -13,7 +13,7 @@ uniform mat4 u_light_tex;
 uniform mediump vec3 u_eye; // shared with the fragment stage: precisions must match
 uniform vec2 u_shadow_bias;  // light-depth units: per unit of the surface's slope to the light, and always
 #if JD_WIDE_ONLY
-varying vec3 v_pos;
+varying vec4 v_pos;          // w: the part's thickness, half (light-depth units)
 varying vec3 v_keep;        // the levels' share a lit face keeps (below)
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 #else
@@ -131,7 +131,7 @@ void main()
     v_keep = mix(vec3(1.0), keep, step(0.0, dot(nk, u_light_dir)));
 #endif
 #if JD_WIDE_ONLY
-    v_pos = a_position;
+    v_pos = vec4(a_position, 0.5 * thick);
 #else
     vec3 vf = normalize(u_eye - a_position);
     v_view = vf;
@@ -173,7 +173,7 @@ void main()
 #ifndef JD_NO_SLAB
     // A face turned from the light takes what crossed the part from the lit
     // face above it.
-    v_wide += max(-lit, 0.0) * jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v, u_slab_scale_v);
+    v_wide += max(-lit, 0.0) * jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v, u_slab_scale_v, thick * 0.5 * u_slab_scale_v);
 #endif
 #endif
 #if JD_TRANSLUCENT

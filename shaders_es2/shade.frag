@@ -15,7 +15,7 @@ uniform vec4 u_shading;      // ambient, specular, shininess, exposure
 uniform vec4 u_light_map;    // light-depth texels per side, their inverse, Schlick F0, depth slack of the proxy
 uniform sampler2D u_depth;   // light depth, packed; irradiance in alpha (full: the exponential shadow map)
 #if JD_WIDE_ONLY
-varying vec3 v_pos;
+varying vec4 v_pos;          // w: the part's thickness, half (light-depth units: mesh.vert)
 varying vec3 v_keep;         // the levels' share a lit face of a thin part keeps (mesh.vert)
 #else
 varying vec3 v_view;         // towards the eye, unit length at the vertices (mesh.vert)
@@ -145,7 +145,7 @@ void main()
     // terminator's ramp): the interpolated normal needs no normalising,
     // nor the view its length for the side test.
     vec3 n = v_normal;
-    if (dot(n, u_eye - v_pos) < 0.0) n = -n;
+    if (dot(n, u_eye - v_pos.xyz) < 0.0) n = -n;
 #else
     vec3 n = normalize(v_normal);
     // The direction to the eye as the vertices had it, not normalised
@@ -201,7 +201,7 @@ void main()
 #ifndef JD_NO_SLAB
     // As the vertex stage's (mesh.vert): through thin parts, to faces
     // turned from the light.
-    wide += max(-lit, 0.0) * jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale);
+    wide += max(-lit, 0.0) * jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, v_pos.w * u_slab_scale);
 #endif
 #if JD_WIDE_ONLY
     // As the vertex stage's: a lit face of a thin part returns R(t).
