@@ -82,6 +82,33 @@ static float cast(const jd_mesh *m, const grid *g, const float o[3], const float
     }
 }
 
+/* A ray a vertex reads the surface's detail: a ridge or a crease
+ * measures thinner than the part around it, and the light the levels
+ * keep followed it as dark lines along a back-lit ear's rim. Two passes
+ * of each vertex averaged with its triangles' other corners (a corner
+ * shared by k triangles counted k times) spread it over the
+ * neighbourhood. In the arena's top; skipped where it does not fit. */
+static void smooth(const jd_mesh *m, float *out, jd_arena *a, jd_error *err)
+{
+    uint32_t ntri = m->num_indices / 3;
+    size_t top = jd_arena_top_mark(a);
+    float *acc = jd_arena_alloc_top(a, sizeof(float) * m->num_vertices, 4, "thickness smoothing", err);
+    float *cnt = jd_arena_alloc_top(a, sizeof(float) * m->num_vertices, 4, "thickness smoothing", err);
+    if (acc && cnt)
+        for (int pass = 0; pass < 2; pass++) {
+            for (uint32_t i = 0; i < m->num_vertices; i++) acc[i] = out[i], cnt[i] = 1.0f;
+            for (uint32_t t = 0; t < ntri; t++) {
+                uint32_t v[3] = {jd_mesh_index(m, 3 * t), jd_mesh_index(m, 3 * t + 1), jd_mesh_index(m, 3 * t + 2)};
+                for (int k = 0; k < 3; k++) {
+                    acc[v[k]] += 0.5f * (out[v[(k + 1) % 3]] + out[v[(k + 2) % 3]]);
+                    cnt[v[k]] += 1.0f;
+                }
+            }
+            for (uint32_t i = 0; i < m->num_vertices; i++) out[i] = acc[i] / cnt[i];
+        }
+    jd_arena_top_reset(a, top);
+}
+
 jd_result jd_mesh_thickness(const jd_mesh *m, float cap, jd_arena *a, float *out, jd_error *err)
 {
     uint32_t ntri = m->num_indices / 3;
@@ -139,26 +166,73 @@ jd_result jd_mesh_thickness(const jd_mesh *m, float cap, jd_arena *a, float *out
         float d[3] = {-n[0] / len, -n[1] / len, -n[2] / len};
         out[i] = cast(m, &g, m->positions + 3 * (size_t)i, d, eps, cap);
     }
-    /* A ray a vertex reads the surface's detail: a ridge or a crease
-     * measures thinner than the part around it, and the light the levels
-     * keep followed it as dark lines along a back-lit ear's rim. Two passes
-     * of each vertex averaged with its triangles' other corners (a corner
-     * shared by k triangles counted k times) spread it over the
-     * neighbourhood. */
-    float *acc = jd_arena_alloc_top(a, sizeof(float) * m->num_vertices, 4, "thickness smoothing", err);
-    float *cnt = jd_arena_alloc_top(a, sizeof(float) * m->num_vertices, 4, "thickness smoothing", err);
-    if (acc && cnt)
-        for (int pass = 0; pass < 2; pass++) {
-            for (uint32_t i = 0; i < m->num_vertices; i++) acc[i] = out[i], cnt[i] = 1.0f;
-            for (uint32_t t = 0; t < ntri; t++) {
-                uint32_t v[3] = {jd_mesh_index(m, 3 * t), jd_mesh_index(m, 3 * t + 1), jd_mesh_index(m, 3 * t + 2)};
-                for (int k = 0; k < 3; k++) {
-                    acc[v[k]] += 0.5f * (out[v[(k + 1) % 3]] + out[v[(k + 2) % 3]]);
-                    cnt[v[k]] += 1.0f;
-                }
-            }
-            for (uint32_t i = 0; i < m->num_vertices; i++) out[i] = acc[i] / cnt[i];
-        }
     jd_arena_top_reset(a, top);
+    smooth(m, out, a, err);
+    return JD_OK;
+}
+
+jd_result jd_mesh_thickness_from(const jd_mesh *m, const jd_mesh *coarse, const float *cthick, float reach, float cap,
+                                 jd_arena *a, float *out, jd_error *err)
+{
+    size_t top = jd_arena_top_mark(a);
+    float ext = fmaxf(coarse->bmax.x - coarse->bmin.x, fmaxf(coarse->bmax.y - coarse->bmin.y, coarse->bmax.z - coarse->bmin.z));
+    if (!(reach > 0.0f)) reach = ext > 0.0f ? ext : 1.0f;
+    /* The coarse vertices in cells at least `reach` wide (a vertex's
+     * candidates lie in its cell and the 26 round it), at most 64 a side
+     * and about a coarse vertex a cell. */
+    float fit = floorf((ext > 0.0f ? ext : 1.0f) / reach), most = 2.0f * cbrtf((float)coarse->num_vertices) + 1.0f;
+    int n = (int)fminf(fminf(fit, most), 64.0f);
+    n = n < 1 ? 1 : n;
+    float size = (ext > 0.0f ? ext : 1.0f) * 1.0001f / (float)n, lo[3] = {coarse->bmin.x, coarse->bmin.y, coarse->bmin.z};
+    size_t ncell = (size_t)n * (size_t)n * (size_t)n;
+    uint32_t *start = jd_arena_alloc_top(a, sizeof(uint32_t) * (ncell + 1), 4, "thickness transfer", err);
+    uint32_t *cursor = jd_arena_alloc_top(a, sizeof(uint32_t) * ncell, 4, "thickness transfer", err);
+    uint32_t *verts = jd_arena_alloc_top(a, sizeof(uint32_t) * (coarse->num_vertices ? coarse->num_vertices : 1), 4,
+                                         "thickness transfer", err);
+    if (!start || !cursor || !verts) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
+    grid g = {n, {lo[0], lo[1], lo[2]}, size, start, verts};
+    memset(start, 0, sizeof(uint32_t) * (ncell + 1));
+    for (uint32_t j = 0; j < coarse->num_vertices; j++) {
+        const float *p = coarse->positions + 3 * (size_t)j;
+        start[(size_t)cell_of(&g, p[0], 0) + (size_t)n * ((size_t)cell_of(&g, p[1], 1) + (size_t)n * (size_t)cell_of(&g, p[2], 2))]++;
+    }
+    uint32_t sum = 0;
+    for (size_t i = 0; i < ncell; i++) {
+        uint32_t k = start[i];
+        start[i] = cursor[i] = sum;
+        sum += k;
+    }
+    start[ncell] = sum;
+    for (uint32_t j = 0; j < coarse->num_vertices; j++) {
+        const float *p = coarse->positions + 3 * (size_t)j;
+        verts[cursor[(size_t)cell_of(&g, p[0], 0) + (size_t)n * ((size_t)cell_of(&g, p[1], 1) + (size_t)n * (size_t)cell_of(&g, p[2], 2))]++] = j;
+    }
+    /* Each vertex: the coarse vertices within reach that face its way (the
+     * proxy keeps a thin part's two sides apart, core/mesh.c), weighted
+     * by the inverse square of their distance; cap where there are none. */
+    float r2 = reach * reach, soft = 0.01f * r2;
+    for (uint32_t i = 0; i < m->num_vertices; i++) {
+        const float *p = m->positions + 3 * (size_t)i, *nv = m->normals + 3 * (size_t)i;
+        int c[3] = {cell_of(&g, p[0], 0), cell_of(&g, p[1], 1), cell_of(&g, p[2], 2)};
+        double sw = 0.0, st = 0.0;
+        for (int z = c[2] - 1; z <= c[2] + 1; z++)
+            for (int y = c[1] - 1; y <= c[1] + 1; y++)
+                for (int x = c[0] - 1; x <= c[0] + 1; x++) {
+                    if (x < 0 || y < 0 || z < 0 || x >= n || y >= n || z >= n) continue;
+                    size_t cell = (size_t)x + (size_t)n * ((size_t)y + (size_t)n * (size_t)z);
+                    for (uint32_t e = start[cell]; e < start[cell + 1]; e++) {
+                        uint32_t j = verts[e];
+                        const float *q = coarse->positions + 3 * (size_t)j, *nq = coarse->normals + 3 * (size_t)j;
+                        if (nv[0] * nq[0] + nv[1] * nq[1] + nv[2] * nq[2] <= 0.0f) continue;
+                        float dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2], d2 = dx * dx + dy * dy + dz * dz;
+                        if (d2 > r2) continue;
+                        double w = 1.0 / (d2 + soft);
+                        sw += w, st += w * cthick[j];
+                    }
+                }
+        out[i] = sw > 0.0 ? (float)fmin(st / sw, cap) : cap;
+    }
+    jd_arena_top_reset(a, top);
+    smooth(m, out, a, err);
     return JD_OK;
 }

@@ -17,6 +17,16 @@ extern "C" {
  * JD_ERR_BUDGET when it does not fit, out untouched. */
 jd_result jd_mesh_thickness(const jd_mesh *m, float cap, jd_arena *a, float *out, jd_error *err);
 
+/* The same for a mesh too large for a ray a vertex at set-up, from the
+ * thickness cthick already measured at the vertices of a coarser mesh over
+ * the same surface (the light map's proxy): each vertex takes the mean of
+ * the coarse vertices within `reach` whose normals face its way, weighted
+ * by the inverse square of their distance (`cap` where there are none),
+ * then the same averaging with its neighbours. JD_ERR_BUDGET when the
+ * coarse vertices' grid does not fit, out untouched. */
+jd_result jd_mesh_thickness_from(const jd_mesh *m, const jd_mesh *coarse, const float *cthick, float reach, float cap,
+                                 jd_arena *a, float *out, jd_error *err);
+
 #ifdef __cplusplus
 }
 #endif

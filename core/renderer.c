@@ -152,26 +152,26 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     /* The part's thickness under each vertex of the mesh and of the light
      * map's proxy (whose vertices the Mali-400 path's levels are summed
      * at), riding in their normals' length (render_target.c): full's light
-     * on thin parts (pass_light.c, update_slab). Where the grid does not fit
-     * the budget, or the mesh has more than 2^17 triangles (a grid of at
-     * most 64 cells a side holds dozens a cell there, and the rays took
-     * seconds at start-up: a 500,000-triangle sphere 2 s more here, one of
-     * 262,000 0.8 s; the bunny's 69,451 60-100 ms),
-     * every part counts as the whole object's width: the half-space's
-     * light, as before. */
+     * on thin parts (pass_light.c, update_slab). A ray a vertex on the proxy,
+     * and on the mesh up to 2^17 triangles; past that (a grid of at most 64
+     * cells a side holds dozens a cell, and the rays took seconds at
+     * start-up: a 500,000-triangle sphere 2 s more here, one of 262,000
+     * 0.8 s; the bunny's 69,451 60-100 ms) the mesh's vertices take the
+     * proxy's thickness round them (jd_mesh_thickness_from, within a proxy
+     * cell and a half). Where it does not fit the budget, every part counts
+     * as the whole object's width: the half-space's light. */
     size_t thick_top = jd_arena_top_mark(a);
     float *thick = jd_arena_alloc_top(a, sizeof(float) * m->num_vertices, 16, "thickness", err);
     float *pthick = jd_arena_alloc_top(a, sizeof(float) * r->proxy.num_vertices, 16, "thickness", err);
     if (!thick || !pthick) { jd_arena_top_reset(a, thick_top); return JD_ERR_BUDGET; }
-    int measured = m->num_indices / 3 <= (1u << 17);
-    for (int k = 0; k < 2; k++) {
-        const jd_mesh *tm = k ? &r->proxy : m;
-        float *out = k ? pthick : thick;
-        if (!measured || jd_mesh_thickness(tm, 2.0f * radius, a, out, NULL)) { /* both or neither */
-            measured = 0;
-            for (uint32_t i = 0; i < m->num_vertices; i++) thick[i] = 2.0f * radius;
-            for (uint32_t i = 0; i < r->proxy.num_vertices; i++) pthick[i] = 2.0f * radius;
-        }
+    float ext_max = fmaxf(ext.x, fmaxf(ext.y, ext.z));
+    if (jd_mesh_thickness(&r->proxy, 2.0f * radius, a, pthick, NULL) ||
+        (m->num_indices / 3 <= (1u << 17)
+             ? jd_mesh_thickness(m, 2.0f * radius, a, thick, NULL)
+             : jd_mesh_thickness_from(m, &r->proxy, pthick, 1.5f * ext_max / (float)d->proxy_cells, 2.0f * radius, a,
+                                      thick, NULL))) { /* both or neither */
+        for (uint32_t i = 0; i < m->num_vertices; i++) thick[i] = 2.0f * radius;
+        for (uint32_t i = 0; i < r->proxy.num_vertices; i++) pthick[i] = 2.0f * radius;
     }
     if ((chunked ? (res = jdr_upload_mesh_chunked(r, m, thick, c, 1.0f / radius, a, err))
                  : (res = jdr_upload_mesh(m, thick, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err))) ||

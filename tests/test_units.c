@@ -145,6 +145,25 @@ static void test_proxy_thin(void)
     CHECK(thick_ok, "one sheet: the cap above it, 0.2 below (%g, %g)", (double)th[0], (double)th[N * N]);
     m.num_indices = k;
 
+    /* A mesh too large for a ray a vertex takes the proxy's thickness round
+     * each vertex, from the proxy vertices facing its way: 0.2 under both
+     * sheets (the other sheet's proxy vertices, 0.2 away, face the other
+     * way); with no proxy vertex within reach, the cap. */
+    float pth[64];
+    int from_ok = proxy.num_vertices <= 64 && jd_mesh_thickness(&proxy, 5.0f, &a, pth, &err) == JD_OK &&
+                  jd_mesh_thickness_from(&m, &proxy, pth, 4.0f, 5.0f, &a, th, &err) == JD_OK;
+    for (int v = 0; from_ok && v < 2 * N * N; v++) from_ok &= fabsf(th[v] - 0.2f) < 0.01f;
+    CHECK(from_ok, "from the proxy: a 0.2 slab measures 0.2 under every vertex (%g, %g; %u proxy vertices)",
+          (double)th[0], (double)th[N * N], proxy.num_vertices);
+    jd_mesh coarse; /* 2 cells: its vertices at the means of its cells', none on the mesh's */
+    from_ok = jd_mesh_build_proxy(&m, 2, &a, &coarse, &err) == JD_OK && coarse.num_vertices <= 64 &&
+              jd_mesh_thickness(&coarse, 5.0f, &a, pth, &err) == JD_OK &&
+              jd_mesh_thickness_from(&m, &coarse, pth, 1e-3f, 5.0f, &a, th, &err) == JD_OK;
+    int capped = 0;
+    for (int v = 0; v < 2 * N * N; v++) capped += th[v] > 1.0f; /* the cap, averaged with neighbours after */
+    CHECK(from_ok && capped > 0, "from the proxy: vertices with none within reach take the cap (%d of %d over 1; %s)", capped,
+          2 * N * N, err.msg);
+
     /* Two opposed vertices in each of 40,000 cells: the sides kept apart
      * would take 80,000 vertices, past 16-bit indices; the proxy is made
      * with one cluster a cell instead of failing. */

@@ -3,7 +3,8 @@
 # The wall runs along z, so the shadow of its top edge is a straight line across the floor.
 # awk -v dense=1: every face of both boxes gridded at about 2 mm (the floor's underside as
 # dense as its top: a mesh whose two sides share the light map proxy's cells), not only the
-# top faces.
+# top faces; -v step=S: at about S mm instead (0.5: 283,840 triangles, past the 2^17 up to which
+# jade measures the thickness with a ray a vertex).
 function box(x0, x1, y0, y1, z0, z1, nx, nz,   i, j, k, x, y, z, b, X, Y, Z) {
     if (dense) {
         X = x1 - x0; Y = y1 - y0; Z = z1 - z0
@@ -36,5 +37,5 @@ function face(ox, oy, oz, ux, uy, uz, vx, vy, vz,   nu, nw, i, j, b, a, c) {
         printf "f %d %d %d\nf %d %d %d\n", a, a + 1, c + 1, a, c + 1, c
     }
 }
-function cells(x, y, z,   n) { n = int(sqrt(x * x + y * y + z * z) / 2 + 0.5); return n < 1 ? 1 : n }
+function cells(x, y, z,   n) { n = int(sqrt(x * x + y * y + z * z) / (step ? step : 2) + 0.5); return n < 1 ? 1 : n }
 BEGIN { nv = 0; box(-50, 90, -2, 0, -50, 50, 70, 50); box(-1, 1, 0, 30, -50, 50, 1, 50) }
