@@ -24,6 +24,29 @@ static int cell_of(const grid *g, float x, int k)
     return c < 0 ? 0 : c >= g->n ? g->n - 1 : c;
 }
 
+static size_t cell_index(const grid *g, int x, int y, int z)
+{
+    return (size_t)x + (size_t)g->n * ((size_t)y + (size_t)g->n * (size_t)z);
+}
+
+static size_t point_cell(const grid *g, const float *p)
+{
+    return cell_index(g, cell_of(g, p[0], 0), cell_of(g, p[1], 1), cell_of(g, p[2], 2));
+}
+
+/* Each cell's count in start[] becomes its first entry (start[ncell]: the
+ * total), and cursor[] a copy to fill the entries by. */
+static void counts_to_starts(uint32_t *start, uint32_t *cursor, size_t ncell)
+{
+    uint32_t sum = 0;
+    for (size_t i = 0; i < ncell; i++) {
+        uint32_t k = start[i];
+        start[i] = cursor[i] = sum;
+        sum += k;
+    }
+    start[ncell] = sum;
+}
+
 static void tri_cells(const jd_mesh *m, const grid *g, uint32_t t, int c0[3], int c1[3])
 {
     for (int k = 0; k < 3; k++) {
@@ -69,7 +92,7 @@ static float cast(const jd_mesh *m, const grid *g, const float o[3], const float
     }
     float best = cap;
     for (;;) {
-        size_t cell = (size_t)c[0] + (size_t)g->n * ((size_t)c[1] + (size_t)g->n * (size_t)c[2]);
+        size_t cell = cell_index(g, c[0], c[1], c[2]);
         for (uint32_t i = g->start[cell]; i < g->start[cell + 1]; i++) {
             float t = hit(m, g->tris[i], o, d);
             if (t > eps && t < best) best = t;
@@ -132,7 +155,7 @@ jd_result jd_mesh_thickness(const jd_mesh *m, float cap, jd_arena *a, float *out
         for (int z = c0[2]; z <= c1[2]; z++)
             for (int y = c0[1]; y <= c1[1]; y++)
                 for (int x = c0[0]; x <= c1[0]; x++) {
-                    g.start[(size_t)x + (size_t)g.n * ((size_t)y + (size_t)g.n * (size_t)z)]++;
+                    g.start[cell_index(&g, x, y, z)]++;
                     total++;
                 }
     }
@@ -141,20 +164,14 @@ jd_result jd_mesh_thickness(const jd_mesh *m, float cap, jd_arena *a, float *out
     if (!g.tris) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
     uint32_t *cursor = jd_arena_alloc_top(a, sizeof(uint32_t) * ncell, 4, "thickness grid", err);
     if (!cursor) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
-    uint32_t sum = 0;
-    for (size_t i = 0; i < ncell; i++) {
-        uint32_t k = g.start[i];
-        g.start[i] = cursor[i] = sum;
-        sum += k;
-    }
-    g.start[ncell] = sum;
+    counts_to_starts(g.start, cursor, ncell);
     for (uint32_t t = 0; t < ntri; t++) {
         int c0[3], c1[3];
         tri_cells(m, &g, t, c0, c1);
         for (int z = c0[2]; z <= c1[2]; z++)
             for (int y = c0[1]; y <= c1[1]; y++)
                 for (int x = c0[0]; x <= c1[0]; x++)
-                    g.tris[cursor[(size_t)x + (size_t)g.n * ((size_t)y + (size_t)g.n * (size_t)z)]++] = t;
+                    g.tris[cursor[cell_index(&g, x, y, z)]++] = t;
     }
     /* A ray from the vertex itself meets its own triangles at 0: hits
      * nearer than a ten-thousandth of the box are its own. */
@@ -192,21 +209,9 @@ jd_result jd_mesh_thickness_from(const jd_mesh *m, const jd_mesh *coarse, const 
     if (!start || !cursor || !verts) { jd_arena_top_reset(a, top); return JD_ERR_BUDGET; }
     grid g = {n, {lo[0], lo[1], lo[2]}, size, start, verts};
     memset(start, 0, sizeof(uint32_t) * (ncell + 1));
-    for (uint32_t j = 0; j < coarse->num_vertices; j++) {
-        const float *p = coarse->positions + 3 * (size_t)j;
-        start[(size_t)cell_of(&g, p[0], 0) + (size_t)n * ((size_t)cell_of(&g, p[1], 1) + (size_t)n * (size_t)cell_of(&g, p[2], 2))]++;
-    }
-    uint32_t sum = 0;
-    for (size_t i = 0; i < ncell; i++) {
-        uint32_t k = start[i];
-        start[i] = cursor[i] = sum;
-        sum += k;
-    }
-    start[ncell] = sum;
-    for (uint32_t j = 0; j < coarse->num_vertices; j++) {
-        const float *p = coarse->positions + 3 * (size_t)j;
-        verts[cursor[(size_t)cell_of(&g, p[0], 0) + (size_t)n * ((size_t)cell_of(&g, p[1], 1) + (size_t)n * (size_t)cell_of(&g, p[2], 2))]++] = j;
-    }
+    for (uint32_t j = 0; j < coarse->num_vertices; j++) start[point_cell(&g, coarse->positions + 3 * (size_t)j)]++;
+    counts_to_starts(start, cursor, ncell);
+    for (uint32_t j = 0; j < coarse->num_vertices; j++) verts[cursor[point_cell(&g, coarse->positions + 3 * (size_t)j)]++] = j;
     /* Each vertex: the coarse vertices within reach that face its way (the
      * proxy keeps a thin part's two sides apart, core/mesh.c), weighted
      * by the inverse square of their distance; cap where there are none. */
@@ -219,7 +224,7 @@ jd_result jd_mesh_thickness_from(const jd_mesh *m, const jd_mesh *coarse, const 
             for (int y = c[1] - 1; y <= c[1] + 1; y++)
                 for (int x = c[0] - 1; x <= c[0] + 1; x++) {
                     if (x < 0 || y < 0 || z < 0 || x >= n || y >= n || z >= n) continue;
-                    size_t cell = (size_t)x + (size_t)n * ((size_t)y + (size_t)n * (size_t)z);
+                    size_t cell = cell_index(&g, x, y, z);
                     for (uint32_t e = start[cell]; e < start[cell + 1]; e++) {
                         uint32_t j = verts[e];
                         const float *q = coarse->positions + 3 * (size_t)j, *nq = coarse->normals + 3 * (size_t)j;
