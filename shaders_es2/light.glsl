@@ -160,8 +160,8 @@ float jd_level_at(sampler2D lv, vec3 p, float d, float s, float slack, float lit
     return l;
 }
 
-// The light that crossed a thin part to a point facing away from the light
-// (pass_light.c, update_slab): the slab's transmission T for the part's
+// The light that crossed a thin part to a point the light does not reach
+// itself (pass_light.c, update_slab): the slab's transmission T for the part's
 // thickness (the table's first row), less what the levels already bring
 // for the depth between the point and the lit face above it (its second
 // row), times the light that entered there. Both from the second level's
@@ -171,8 +171,9 @@ float jd_level_at(sampler2D lv, vec3 p, float d, float s, float slack, float lit
 // read point by point mottles an ear with the proxy's facets. zs: the
 // point's depth times scale, light-depth units to the table's coordinate;
 // tn: the part's own thickness under the point along its normal, in the
-// table's coordinate (mesh_thickness.c).
-vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float scale, float tn)
+// table's coordinate (mesh_thickness.c); lit: the point's own light
+// (jd_lit_ramp), negative past the terminator.
+vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float scale, float tn, float lit)
 {
     vec2 m = texture2D(level, xy).rg;
     float z = zs - m.y * scale;
@@ -184,8 +185,20 @@ vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float sca
     // thickness there lit ketchup's feet from the back; at twice, or with
     // no limit, the bunny's back-lit table lost 1-10% of the gain).
     float t = min(z, max(tn, 4.0 * z - 11.0 * tn));
+    // Where it applies: a face turned from the light, over the first
+    // quarter of n.l past the terminator (lit: jd_lit_ramp); and, whatever
+    // its n.l, a face not lit itself (the rest of 1 - lit) whose lit face
+    // above lies a quarter to three times the part's thickness away: a
+    // thin part's far side. The reference carries the light across a part
+    // whatever the angle of the face it leaves by; the ramp alone left a
+    // dark dashed streak down the back-lit bunny's ear, where a wrinkle's
+    // normal turns to the light in the ear's own shadow. A thick body's
+    // terminator, which the ramp is for, has its lit surface at the point
+    // itself (z far below tn) and takes the ramp alone.
+    float r = z / max(tn, 0.001);
+    float w = max(-lit, clamp(min(4.0 * r - 1.0, 6.0 - 2.0 * r), 0.0, 1.0) * (1.0 - max(lit, 0.0)));
     // sqrt(S / (21/20)): the table holds the 21/20.
-    return (m.x * m.x) * max(texture2D(slab, vec2(t, 0.25)).rgb - texture2D(slab, vec2(z, 0.75)).rgb, 0.0);
+    return (w * m.x * m.x) * max(texture2D(slab, vec2(t, 0.25)).rgb - texture2D(slab, vec2(z, 0.75)).rgb, 0.0);
 }
 
 // The levels' sum at light-map position p (xy, depth): Rd's weight on each

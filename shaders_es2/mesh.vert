@@ -171,9 +171,9 @@ void main()
     // half-space's: what went deep left through the far side.
     v_wide *= mix(vec3(1.0), keep, step(0.0, ndl));
 #ifndef JD_NO_SLAB
-    // A face turned from the light takes what crossed the part from the lit
-    // face above it.
-    v_wide += max(-lit, 0.0) * jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v, u_slab_scale_v, thick * 0.5 * u_slab_scale_v);
+    // A face the light does not reach takes what crossed the part from the
+    // lit face above it.
+    v_wide += jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v, u_slab_scale_v, thick * 0.5 * u_slab_scale_v, lit);
 #endif
 #endif
 #if JD_TRANSLUCENT

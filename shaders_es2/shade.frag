@@ -199,9 +199,9 @@ void main()
     float lit = jd_lit_ramp(dot(n, u_light_dir), vis);
     vec3 wide = jd_diffused(u_lv0, u_lv1, u_lv2, u_lv3, u_lv4, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map.w, lit);
 #ifndef JD_NO_SLAB
-    // As the vertex stage's (mesh.vert): through thin parts, to faces
-    // turned from the light.
-    wide += max(-lit, 0.0) * jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, v_pos.w * u_slab_scale);
+    // As the vertex stage's (mesh.vert): through thin parts, to faces the
+    // light does not reach.
+    wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, v_pos.w * u_slab_scale, lit);
 #endif
 #if JD_WIDE_ONLY
     // As the vertex stage's: a lit face of a thin part returns R(t).
