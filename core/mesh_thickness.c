@@ -193,14 +193,15 @@ jd_result jd_mesh_thickness_from(const jd_mesh *m, const jd_mesh *coarse, const 
 {
     size_t top = jd_arena_top_mark(a);
     float ext = fmaxf(coarse->bmax.x - coarse->bmin.x, fmaxf(coarse->bmax.y - coarse->bmin.y, coarse->bmax.z - coarse->bmin.z));
-    if (!(reach > 0.0f)) reach = ext > 0.0f ? ext : 1.0f;
+    if (!(ext > 0.0f)) ext = 1.0f; /* a flat or empty box: any grid does */
+    if (!(reach > 0.0f)) reach = ext;
     /* The coarse vertices in cells at least `reach` wide (a vertex's
      * candidates lie in its cell and the 26 round it), at most 64 a side
      * and about a coarse vertex a cell. */
-    float fit = floorf((ext > 0.0f ? ext : 1.0f) / reach), most = 2.0f * cbrtf((float)coarse->num_vertices) + 1.0f;
+    float fit = floorf(ext / reach), most = 2.0f * cbrtf((float)coarse->num_vertices) + 1.0f;
     int n = (int)fminf(fminf(fit, most), 64.0f);
     n = n < 1 ? 1 : n;
-    float size = (ext > 0.0f ? ext : 1.0f) * 1.0001f / (float)n, lo[3] = {coarse->bmin.x, coarse->bmin.y, coarse->bmin.z};
+    float size = ext * 1.0001f / (float)n, lo[3] = {coarse->bmin.x, coarse->bmin.y, coarse->bmin.z};
     size_t ncell = (size_t)n * (size_t)n * (size_t)n;
     uint32_t *start = jd_arena_alloc_top(a, sizeof(uint32_t) * (ncell + 1), 4, "thickness transfer", err);
     uint32_t *cursor = jd_arena_alloc_top(a, sizeof(uint32_t) * ncell, 4, "thickness transfer", err);
