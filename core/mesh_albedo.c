@@ -2,7 +2,7 @@
  * and texels hold sqrt(linear reflectance) in 8 bits; the texture's weight
  * (0 or 1) rides in the vertex colour's alpha, so that a model whose
  * materials are partly untextured keeps one texture and one draw. */
-#include "mesh_albedo.h"
+#include "mesh.h"
 
 #include <math.h>
 
@@ -65,19 +65,6 @@ static double triangle_area(const jd_mesh *m, uint32_t t)
     }
     double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
     return 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
-}
-
-double jd_mesh_texels_per_unit(const jd_mesh *m, uint32_t w, uint32_t h)
-{
-    if (!m->uvs) return 0.0;
-    double tex_area = 0, area = 0;
-    for (uint32_t t = 0; t < m->num_indices / 3; t++) {
-        const float *u0 = m->uvs + 2 * (size_t)jd_mesh_index(m, 3 * t), *u1 = m->uvs + 2 * (size_t)jd_mesh_index(m, 3 * t + 1),
-                    *u2 = m->uvs + 2 * (size_t)jd_mesh_index(m, 3 * t + 2);
-        tex_area += 0.5 * fabs(((double)u1[0] - u0[0]) * ((double)u2[1] - u0[1]) - ((double)u2[0] - u0[0]) * ((double)u1[1] - u0[1]));
-        area += triangle_area(m, t);
-    }
-    return area > 0 ? sqrt(tex_area * w * h / area) : 0.0;
 }
 
 void jd_mesh_albedo_prepare(jd_mesh *m)

@@ -17,7 +17,6 @@
 #include "draco_header.h"
 #include "draco_shim.h"
 #include "gltf_read.h"
-#include "mesh_albedo.h"
 #include "mesh_subdivide.h"
 #include "obj_material.h"
 

@@ -2,7 +2,6 @@
  * renderbuffer where asked) and the mesh uploads, chunked to 16-bit
  * indices where the GPU has no 32-bit ones. */
 #include "renderer_internal.h"
-#include "mesh_albedo.h"
 #include "mesh_load.h"
 
 #include <string.h>
@@ -231,12 +230,6 @@ jd_result jdr_upload_albedo(jd_renderer *r, const jd_mesh *m, jd_arena *a, jd_er
         w = nw;
         h = nh;
     }
-    /* Texels per world unit of the surface: the renderer's world has the
-     * bounding sphere's radius as its unit. */
-    jd_vec3 centre;
-    float radius;
-    jd_mesh_placement(m, &centre, &radius);
-    r->albedo_texels_per_world = (float)(jd_mesh_texels_per_unit(m, (uint32_t)w, (uint32_t)h) * radius);
     glGenTextures(1, &r->albedo_tex);
     glBindTexture(GL_TEXTURE_2D, r->albedo_tex);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, src);

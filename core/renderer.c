@@ -349,8 +349,11 @@ static void albedo_bias(jd_renderer *r, const jd_scene *s, frame_params *f)
         }
         r->albedo_reach_mm = (float)reach;
     }
-    double texels = r->albedo_reach_mm / f->mm_per_world * r->albedo_texels_per_world;
-    f->albedo_bias = texels > 1.0 ? (float)log2(texels) : 0.0f;
+    /* texture2D's bias is added to the level the GPU chose for the screen
+     * (log2 of texels per pixel), not to level 0: the reach in texels is
+     * reached by the reach in pixels, at the object's depth. */
+    double px = r->albedo_reach_mm / f->mm_per_world * f->px_per_world;
+    f->albedo_bias = px > 0.0 ? (float)log2(px) : 0.0f;
 }
 
 static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f)

@@ -113,7 +113,6 @@ struct jd_renderer {
     GLuint albedo_tex;
     int albedo_w, albedo_h;
     size_t albedo_bytes;
-    float albedo_texels_per_world;
     float albedo_key[8], albedo_reach_mm; /* the material the entry's radius was found for, and it */
     timer_query tq;
     uint8_t *tail_px;     /* TAIL_SIZE RGBA texels, rebuilt when the material changes */
