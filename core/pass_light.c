@@ -245,7 +245,7 @@ void jdr_pass_diffusion(jd_renderer *r, const jd_scene *s, const frame_params *f
 }
 
 /* full's exponential shadow map's exponent per light-depth unit: 0.35 per
- * texel of depth (light.glsl, jd_soft_exponent, whose slack of a texel, the
+ * texel of depth (light.glsl, jd_soft_lit, whose slack of a texel, the
  * - 0.35 in mesh.vert, is this exponent times a texel: change them
  * together). */
 float jdr_soft_c(const jd_renderer *r)

@@ -23,7 +23,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     if (p->depth_v >= 0) glUniform1i(p->depth_v, 0);
     glActiveTexture(GL_TEXTURE0);
     /* full's programs read the exponential shadow map where the others
-     * read the light map (light.glsl, jd_soft_exponent). */
+     * read the light map (light.glsl, jd_soft_lit). */
     glBindTexture(GL_TEXTURE_2D, p->soft_c >= 0 ? r->soft.tex : r->light.tex);
     if (p->soft_c >= 0) glUniform2f(p->soft_c, jdr_soft_c(r), jdr_soft_c(r) / 255.0f);
     if (p->local_x >= 0 || p->lw >= 0) { /* full: the local weight, the levels (either may be compiled out) */
@@ -63,9 +63,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         if (p->slab >= 0 || p->slab_v >= 0) { /* unit 6: the wide buffer's, which these programs do not read */
             float scale = 2.0f * f->mm_per_world / r->slab_range_mm;
             glUniform1i(p->slab >= 0 ? p->slab : p->slab_v, 6);
-            /* and that over the shadow map's exponent per unit: the gap
-             * its test's exponent gives (light.glsl, jd_soft_exponent) */
-            glUniform2f(p->slab >= 0 ? p->slab_scale : p->slab_scale_v, scale, scale / jdr_soft_c(r));
+            glUniform1f(p->slab >= 0 ? p->slab_scale : p->slab_scale_v, scale);
             glActiveTexture(GL_TEXTURE6);
             glBindTexture(GL_TEXTURE_2D, r->slab_tex);
         }

@@ -58,7 +58,7 @@ typedef struct shade_prog {
     GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
     GLint albedo_norm, albedo_map, albedo_bias;
     GLint slab, slab_v, slab_scale, slab_scale_v, keep;
-    GLint soft_c; /* full: the exponential shadow map's exponent (light.glsl, jd_soft_exponent) */
+    GLint soft_c; /* full: the exponential shadow map's exponent (light.glsl, jd_soft_lit) */
 } shade_prog;
 
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */

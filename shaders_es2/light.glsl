@@ -83,13 +83,9 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
 // Declared in both stages at one precision, as GLSL ES asks of a uniform
 // they share.
 uniform mediump vec2 u_soft_c; // c and c / 255: the two bytes' weights
-// The test's exponent, c (the map's blurred depth - the point's) + 0.35:
-// the point is lit by min(exp2 of it, 1). Below 0.35 the point lies
-// (0.35 - it) / c light-depth units under the map's surface above it (the
-// gap jd_slab_light takes).
-float jd_soft_exponent(sampler2D soft, vec3 p)
+float jd_soft_lit(sampler2D soft, vec3 p)
 {
-    return dot(texture2D(soft, p.xy).xy, u_soft_c) - p.z;
+    return min(exp2(dot(texture2D(soft, p.xy).xy, u_soft_c) - p.z), 1.0);
 }
 
 // The light a point takes from the levels and through thin parts, as one
@@ -176,20 +172,19 @@ float jd_level_at(sampler2D lv, vec3 p, float d, float s, float slack, float lit
 // point's depth times scale, light-depth units to the table's coordinate;
 // tn: the part's own thickness under the point along its normal, in the
 // table's coordinate (mesh_thickness.c); lit: the point's own light
-// (jd_lit_ramp), negative past the terminator; gap: the depth to the
-// lit face above from the shadow map (jd_soft_exponent), in the table's
-// coordinate.
-vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float scale, float gap, float tn, float lit)
+// (jd_lit_ramp), negative past the terminator; sd: the shadow map's depth
+// at xy (jd_soft_lit's map, read as the light map is).
+vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float scale, float sd, float tn, float lit)
 {
     vec2 m = texture2D(level, xy).rg;
-    // The depth to the lit face above, the larger of two estimates that
-    // each fall short where that face slants across the light: the level's
-    // mean depth of the light that entered within a level texel (a few
-    // millimetres: on an ear slanted to the light its mean lay level with
+    // The lit face's depth above the point: the shallower of two estimates
+    // that each lie too deep where that face slants across the light. The
+    // level's mean depth of the light that entered within a level texel (a
+    // few millimetres: on an ear slanted to the light it lay level with
     // the far face, or below it, and the far face took nothing), and the
     // shadow map's, whose exponential blur leans to the deepest texel
-    // within one or two light-map texels.
-    float z = max(zs - m.y * scale, gap);
+    // within a light-map texel or two.
+    float z = zs - min(m.y, sd) * scale;
     // The reference carries the light across a part along the normal,
     // which a slanted light crosses longer: the part's own thickness where
     // the depth is up to three times it (a light 70 degrees off the

@@ -68,7 +68,7 @@ uniform vec3 u_lw[5];
 uniform vec3 u_ls[2];
 #ifndef JD_NO_SLAB
 uniform sampler2D u_slab_v;    // the light through thin parts, by thickness (jd_slab_light)
-uniform vec2 u_slab_scale_v;  // light-depth units to its coordinate; that over the shadow map's c
+uniform float u_slab_scale_v; // light-depth units to its coordinate
 #endif
 varying vec3 v_wide;
 #endif
@@ -142,7 +142,7 @@ void main()
     v_shadow = sp.xyzz;
 #if JD_FULL
     // full's shadow test takes the depth as its exponential's exponent
-    // (light.glsl, jd_soft_exponent): scaled and offset here, not per fragment;
+    // (light.glsl, jd_soft_lit): scaled and offset here, not per fragment;
     // full moves no depth towards the light (the bias below is the 2x2
     // test's).
     v_shadow.z = sp.z * u_soft_c.x - 0.350;
@@ -165,8 +165,7 @@ void main()
     // The shadow test without a branch round it: jd_lit_ramp takes it only
     // where ndl > 0 (VideoCore IV's vertex stage 330 -> 286 instructions,
     // 614 -> 477 cycles; Adreno 3xx 628 -> 554).
-    float se = jd_soft_exponent(u_depth_v, v_shadow.xyz);
-    float lit = jd_lit_ramp(ndl, min(exp2(se), 1.0));
+    float lit = jd_lit_ramp(ndl, jd_soft_lit(u_depth_v, v_shadow.xyz));
     v_wide = jd_diffused(u_lv0_v, u_lv1_v, u_lv2_v, u_lv3_v, u_lv4_v, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map_v.w, lit);
     // A lit face of a thin part returns the slab's R(t), not the
     // half-space's: what went deep left through the far side.
@@ -174,8 +173,8 @@ void main()
 #ifndef JD_NO_SLAB
     // A face the light does not reach takes what crossed the part from the
     // lit face above it.
-    v_wide += jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v.x, u_slab_scale_v.x,
-                            (0.35 - se) * u_slab_scale_v.y, thick * 0.5 * u_slab_scale_v.x, lit);
+    v_wide += jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v, u_slab_scale_v,
+                            dot(texture2D(u_depth_v, v_shadow.xy).xy, jd_bytes), thick * 0.5 * u_slab_scale_v, lit);
 #endif
 #endif
 #if JD_TRANSLUCENT

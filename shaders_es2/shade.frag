@@ -69,7 +69,7 @@ uniform vec3 u_lw[5];        // Rd's weight on each level's Gaussian, per channe
 uniform vec3 u_ls[2];        // per level: depth units to sigma_k sqrt(2), levels 1-3 and 4-5; the first level's size
 #ifndef JD_NO_SLAB
 uniform sampler2D u_slab;    // the light through thin parts, by thickness (jd_slab_light)
-uniform vec2 u_slab_scale;   // light-depth units to its coordinate; that over the shadow map's c
+uniform float u_slab_scale;  // light-depth units to its coordinate
 #endif
 #endif
 #endif
@@ -165,11 +165,10 @@ void main()
 #else
     float ndl = max(dot(n, u_light_dir), 0.0);
 #if JD_FULL
-    // full's own test, soft (light.glsl, jd_soft_exponent): u_depth holds
-    // the exponential shadow map here. v_shadow.z: the depth not moved
+    // full's own test, soft (light.glsl, jd_soft_lit): u_depth holds the
+    // exponential shadow map here. v_shadow.z: the depth not moved
     // towards the light, as the exponent (mesh.vert).
-    float se = jd_soft_exponent(u_depth, v_shadow.xyz);
-    float vis = min(exp2(se), 1.0);
+    float vis = jd_soft_lit(u_depth, v_shadow.xyz);
 #elif JD_SPREAD || (JD_TRANSLUCENT && JD_ALBEDO)
     float vis = ndl > 0.0 ? jd_lit_fraction(u_depth, v_shadow.xyz, u_light_map.xy) : 0.0;
 #else
@@ -202,14 +201,13 @@ void main()
 #ifndef JD_NO_SLAB
     // As the vertex stage's (mesh.vert): through thin parts, to faces the
     // light does not reach.
-    // The shadow map's exponent read again for the gap, not carried from
-    // the test above: held across the levels' loop it took lima past its
-    // six registers (1:4 spills). The bias keeps the compilers from
-    // merging the two reads into one; the map has no mip levels, so it
-    // reads the same texels.
-    float sg = dot(texture2D(u_depth, v_shadow.xy, -1.0).xy, u_soft_c) - v_shadow.z;
-    wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale.x, u_slab_scale.x, (0.35 - sg) * u_slab_scale.y,
-                          v_pos.w * u_slab_scale.x, lit);
+    // The shadow map's depth read again, not merged with the test's read
+    // above: held across the levels' loop, that read's value took lima
+    // past its six registers (1:4 spills). The bias keeps the compilers
+    // from merging the two; the map has no mip levels, so it reads the
+    // same texels.
+    float sd = dot(texture2D(u_depth, v_shadow.xy, -1.0).xy, jd_bytes);
+    wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, sd, v_pos.w * u_slab_scale, lit);
 #endif
 #if JD_WIDE_ONLY
     // As the vertex stage's: a lit face of a thin part returns R(t).

@@ -37,7 +37,7 @@ ref=$(jerk ref) none=$(jerk none) full=$(jerk full)
 echo "jerk (RMS of the second difference between frames, linear luminance): reference $ref, none $none, full $full"
 if awk -v r="$ref" -v n="$none" 'BEGIN { exit !(r != "" && r < n) }'; then ok "the reference is smoother than none ($ref < $none)"
 else bad "the reference ($ref) is not smoother than none ($none): the measure sees nothing"; fi
-# 0.0144 measured since full's soft shadow (light.glsl, jd_soft_exponent; 0.0151
+# 0.0144 measured since full's soft shadow (light.glsl, jd_soft_lit; 0.0151
 # with the 2x2 test before it): the goal, the reference's, is missed
 # (docs/quality.md); the bound keeps it from growing unseen.
 if awk -v f="$full" 'BEGIN { exit !(f != "" && f <= 0.0158) }'; then ok "full's jerk $full <= 0.0158 (measured 0.0144)"

@@ -54,7 +54,7 @@ for az in -60 -75 dense-60; do
         # The goal: as soft as the reference within a third either way, and
         # no steps (straying no more than the reference's own line, plus a
         # tenth of a pixel). full's exponential shadow map (light.glsl,
-        # jd_soft_exponent): -60 2.02 / 0.118 mm, -75 2.11 / 0.108 against the
+        # jd_soft_lit): -60 2.02 / 0.118 mm, -75 2.11 / 0.108 against the
         # reference's 2.26 / 0.030 and 2.30 / 0.051; the mali400 profile's
         # picture 2.11 / 0.116 and 2.20 / 0.122. The stray's bound holds
         # those with a tenth to spare. Since the loader splits coarse
