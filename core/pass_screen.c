@@ -97,7 +97,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     }
     if (p->albedo_map >= 0) {
         glUniform1i(p->albedo_map, 7);
-        glUniform1f(p->albedo_bias, f->albedo_bias);
+        glUniform1f(p->albedo_reach, f->albedo_reach);
         glActiveTexture(GL_TEXTURE7);
         glBindTexture(GL_TEXTURE_2D, r->albedo_tex);
         glActiveTexture(GL_TEXTURE0);

@@ -102,7 +102,7 @@ static void shade_locations(shade_prog *p)
     p->lw = glGetUniformLocation(id, "u_lw");
     p->albedo_norm = glGetUniformLocation(id, "u_albedo_norm");
     p->albedo_map = glGetUniformLocation(id, "u_albedo_map");
-    p->albedo_bias = glGetUniformLocation(id, "u_albedo_bias");
+    p->albedo_reach = glGetUniformLocation(id, "u_albedo_reach");
     p->ls = glGetUniformLocation(id, "u_ls");
     p->amb_x = glGetUniformLocation(id, "u_amb_x");
     p->local_x = glGetUniformLocation(id, "u_local_x");

@@ -332,7 +332,7 @@ void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
  * green's, the same in the marble-like material), read from the mip level
  * whose texel spans it (docs/textures.md). The radius is found again only
  * when the material changes. */
-static void albedo_bias(jd_renderer *r, const jd_scene *s, frame_params *f)
+static void albedo_reach(jd_renderer *r, const jd_scene *s, frame_params *f)
 {
     float key[8] = {s->sigma_s[0], s->sigma_s[1], s->sigma_s[2], s->sigma_a[0], s->sigma_a[1], s->sigma_a[2], s->eta,
                     s->density};
@@ -351,9 +351,11 @@ static void albedo_bias(jd_renderer *r, const jd_scene *s, frame_params *f)
     }
     /* texture2D's bias is added to the level the GPU chose for the screen
      * (log2 of texels per pixel), not to level 0: the reach in texels is
-     * reached by the reach in pixels, at the object's depth. */
-    double px = r->albedo_reach_mm / f->mm_per_world * f->px_per_world;
-    f->albedo_bias = px > 0.0 ? (float)log2(px) : 0.0f;
+     * reached by the reach in pixels where the surface faces the camera.
+     * The vertex stage divides this by its own depth (gl_Position.w, the
+     * depth along the view: the object's centre is at the eye's distance)
+     * and takes the slant (mesh.vert). */
+    f->albedo_reach = (float)(r->albedo_reach_mm / f->mm_per_world * f->px_per_world * jd_v3_len(f->eye));
 }
 
 static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f)
@@ -513,7 +515,7 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *asked, jd_frame_stat
     frame_params f;
     memset(&f, 0, sizeof f);
     frame_setup(r, s, &f);
-    if (r->albedo_tex) albedo_bias(r, s, &f);
+    if (r->albedo_tex) albedo_reach(r, s, &f);
     if (stats) memset(stats, 0, sizeof *stats);
     double t = jd_clock_ms();
     /* Packed values must reach RGBA8 bit-exact: GL enables dithering by default. */

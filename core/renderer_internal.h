@@ -56,7 +56,7 @@ typedef struct shade_prog {
     GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls;
     GLint amb_x, local_x, wide_x, spec_x; /* full's constant factors (shade.frag) */
     GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
-    GLint albedo_norm, albedo_map, albedo_bias;
+    GLint albedo_norm, albedo_map, albedo_reach;
     GLint slab, slab_v, slab_scale, slab_scale_v, keep;
     GLint soft_c; /* full: the exponential shadow map's exponent (light.glsl, jd_soft_lit) */
 } shade_prog;
@@ -198,7 +198,8 @@ typedef struct frame_params {
     float w0[3], w1[3], w2[3];
     float inv_eta, inset;
     float mm_per_world, blur_sigma_px;
-    float albedo_norm[3], albedo_bias; /* 1 / the colours' mean; the entry's mip bias (JD_ALBEDO) */
+    float albedo_norm[3]; /* 1 / the colours' mean (JD_ALBEDO) */
+    float albedo_reach;   /* the entry's radius in pixels times the depth it is seen at (JD_ALBEDO_MAP) */
     float px_per_world;   /* the picture's passes' pixels per world unit at the object's centre */
     float light_map[4], shadow_bias[2];
 } frame_params;

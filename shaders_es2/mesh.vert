@@ -35,7 +35,8 @@ uniform vec3 u_albedo_norm;    // 1 / the surface's mean reflectance (halved wit
 varying vec4 v_col;
 #if JD_ALBEDO_MAP
 attribute vec2 a_uv;
-varying vec2 v_uv;
+uniform float u_albedo_reach;  // the entry's radius in pixels, times the depth it is seen at
+varying vec3 v_uv;             // texture coordinates, the entry's mip bias
 #endif
 #endif
 #if JD_FULL && !JD_WIDE_ONLY
@@ -111,9 +112,6 @@ void main()
 #else
     v_col = vec4(a_color.rgb * a_color.rgb * u_albedo_norm, a_color.a);
 #endif
-#if JD_ALBEDO_MAP
-    v_uv = a_uv;
-#endif
 #endif
     // The normal's length carries the part's thickness under the vertex,
     // t = 2 (|n| - 1) (render_target.c, mesh_thickness.c).
@@ -138,6 +136,15 @@ void main()
 #endif
     v_normal = an;
     gl_Position = u_mvp * vec4(a_position, 1.0);
+#if JD_ALBEDO_MAP
+    // The entry's mip bias (shade.frag): the radius in pixels here, nearer
+    // or further than the object's centre, and less the slant. The GPU
+    // picks a level by the footprint's longer side, which a surface seen
+    // at a slant stretches by 1 / |n.v|: the bias takes that back, else
+    // the entry near the silhouette was read levels too coarse (at most
+    // 4.3 levels here, at |n.v| 0.05).
+    v_uv = vec3(a_uv, log2(max(max(abs(dot(an, vf)), 0.05) * u_albedo_reach / gl_Position.w, 1e-6)));
+#endif
     vec4 sp = u_light_tex * vec4(a_position, 1.0);
     v_shadow = sp.xyzz;
 #if JD_FULL

@@ -78,8 +78,7 @@ uniform float u_slab_scale;  // light-depth units to its coordinate
 varying vec4 v_col;          // reflectance / mean at the vertex (halved with the texture), texture weight
 #if JD_ALBEDO_MAP
 uniform sampler2D u_albedo_map; // sqrt of the reflectance
-uniform float u_albedo_bias; // mip levels from the exit's texel to the profile's reach
-varying vec2 v_uv;
+varying vec3 v_uv;           // texture coordinates, mip levels from the exit's texel to the profile's reach
 #endif
 // The light under the surface scaled by its colour where it leaves and
 // where it entered, sqrt(A_out) sqrt(A_in) / mean A (d'Eon, Luebke and
@@ -90,8 +89,8 @@ varying vec2 v_uv;
 vec3 albedo_factor()
 {
 #if JD_ALBEDO_MAP
-    vec3 t0 = texture2D(u_albedo_map, v_uv).rgb;
-    vec3 t = t0 * (t0 + texture2D(u_albedo_map, v_uv, u_albedo_bias).rgb);
+    vec3 t0 = texture2D(u_albedo_map, v_uv.xy).rgb;
+    vec3 t = t0 * (t0 + texture2D(u_albedo_map, v_uv.xy, v_uv.z).rgb);
 #if JD_ALBEDO_PARTIAL
     // Some materials untextured: their vertices' weight 0 takes the
     // texture out (2: the uniform's halving undone).
