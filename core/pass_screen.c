@@ -90,9 +90,10 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         glActiveTexture(GL_TEXTURE0);
     }
     if (p->albedo_norm >= 0) {
-        /* With the texture, the fragment stage's entry mean (t0 + t1) / 2
-         * takes its halving from here: one multiply fewer per fragment. */
-        float k = p->albedo_map >= 0 ? 0.5f : 1.0f;
+        /* With the texture, the fragment stage's entry mean (t0 + 2 t1) / 3,
+         * written t0 / 2 + t1, takes its 2/3 from here: one multiply fewer
+         * per fragment. */
+        float k = p->albedo_map >= 0 ? 2.0f / 3.0f : 1.0f;
         glUniform3f(p->albedo_norm, k * f->albedo_norm[0], k * f->albedo_norm[1], k * f->albedo_norm[2]);
     }
     if (p->albedo_map >= 0) {

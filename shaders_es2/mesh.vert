@@ -31,7 +31,7 @@ varying vec4 v_shadow;
 // The model's own colour (docs/textures.md): the vertex's reflectance over
 // the surface's mean, and the texture's weight; the texture's coordinates.
 attribute vec4 a_color;        // sqrt of the reflectance, texture weight
-uniform vec3 u_albedo_norm;    // 1 / the surface's mean reflectance (halved with a texture: shade.frag)
+uniform vec3 u_albedo_norm;    // 1 / the surface's mean reflectance (2/3 of it with a texture: shade.frag)
 varying vec4 v_col;
 #if JD_ALBEDO_MAP
 attribute vec2 a_uv;

@@ -75,7 +75,7 @@ uniform float u_slab_scale;  // light-depth units to its coordinate
 #endif
 
 #if JD_ALBEDO
-varying vec4 v_col;          // reflectance / mean at the vertex (halved with the texture), texture weight
+varying vec4 v_col;          // reflectance / mean at the vertex (2/3 of it with the texture), texture weight
 #if JD_ALBEDO_MAP
 uniform sampler2D u_albedo_map; // sqrt of the reflectance
 varying vec3 v_uv;           // texture coordinates, mip levels from the exit's texel to the profile's reach
@@ -83,18 +83,21 @@ varying vec3 v_uv;           // texture coordinates, mip levels from the exit's 
 // The light under the surface scaled by its colour where it leaves and
 // where it entered, sqrt(A_out) sqrt(A_in) / mean A (d'Eon, Luebke and
 // Enderton 2007, pre- and post-scatter texturing). The entry's sqrt(A) is
-// the profile-weighted mean around the point: half the colour at the point
-// (the profile's peak), half the texture's mean over its 60% radius (a
-// coarser mip level), as jade reference measured it (docs/textures.md).
+// the profile-weighted mean around the point: a third the colour at the
+// point (the profile's peak), two thirds the texture's mean over its 60%
+// radius (a coarser mip level), as jade reference measured it
+// (docs/textures.md).
 vec3 albedo_factor()
 {
 #if JD_ALBEDO_MAP
     vec3 t0 = texture2D(u_albedo_map, v_uv.xy).rgb;
-    vec3 t = t0 * (t0 + texture2D(u_albedo_map, v_uv.xy, v_uv.z).rgb);
+    // (t0 + 2 t1) / 3 as (t0 / 2 + t1) with the 2/3 in u_albedo_norm:
+    // lima had a word more for the 2 t1.
+    vec3 t = t0 * (0.5 * t0 + texture2D(u_albedo_map, v_uv.xy, v_uv.z).rgb);
 #if JD_ALBEDO_PARTIAL
     // Some materials untextured: their vertices' weight 0 takes the
-    // texture out (2: the uniform's halving undone).
-    return v_col.rgb * mix(vec3(2.0), t, v_col.a);
+    // texture out (1.5: the uniform's 2/3 undone).
+    return v_col.rgb * mix(vec3(1.5), t, v_col.a);
 #else
     return v_col.rgb * t;
 #endif
