@@ -192,8 +192,8 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
               * a colour texture; there full goes without it. */
              m == JD_MODE_FULL && r->vertex_diffusion && 8 + (r->albedo && map) > r->d.caps->max_texture_units
                  ? "#define JD_NO_SLAB 1\n" : "");
-    /* v_pos v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel] [v_wide or v_screen] [v_col] [v_uv] */
-    int varyings = translucent ? (r->vertex_thickness ? 5 : 6) : 3 + 2 * (m == JD_MODE_FULL);
+    /* v_view v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel v_half] [v_wide or v_screen] [v_col] [v_uv] */
+    int varyings = translucent ? (r->vertex_thickness ? 5 : 6) : 3 + 3 * (m == JD_MODE_FULL);
     varyings += r->albedo + (r->albedo && map);
     jd_result res = build(r, varyings, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs,
                           &r->shade[m].id, err);

@@ -45,10 +45,16 @@ varying vec3 v_uv;             // texture coordinates, the entry's mip bias
 // transmitted in, times n.l and the share a thin part keeps (below, green's
 // for all channels: pass_light.c); and the view's out. Meshes are dense beside
 // the pixels the boards shade (the default asset at 960x540: about one
-// vertex a fragment), and both factors are smooth.
+// vertex a fragment), and both factors are smooth. The highlight's half
+// vector too, for the same reason: the fragment stage normalised it from
+// the light and the interpolated view at 4 of lima's 37 words; a mesh
+// coarse beside the highlight is split by the loader (mesh_subdivide.c),
+// and the interpolated vector is short by the cosine of half the angle
+// between its vertices' (a 12-triangle cube close up: 2 of 255 at most).
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 uniform float u_f0;
 varying vec2 v_fresnel;
+varying vec3 v_half;
 #endif
 #if JD_FULL
 uniform vec3 u_keep[2];     // a lit face's light kept by a part t thick: 1 - a 2^(-b t) (pass_light.c)
@@ -164,6 +170,7 @@ void main()
     float ndl_v = max(dot(nf, u_light_dir), 0.0);
     // n.l is 0 on a face turned from the light: keep counts only where lit.
     v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_f0) * keep.g, jd_fresnel_tc(dot(nf, vf), u_f0));
+    v_half = normalize(u_light_dir + vf);
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
     vec3 nv = an;
