@@ -48,6 +48,9 @@ typedef struct gltf {
      * colour of its own. */
     double cur_factor[3];
     int cur_textured, texture, coloured, other_textures;
+    /* The shown texture's KHR_texture_transform for the primitive being
+     * read, as u' = x[0] u + x[1] v + x[2], v' = x[3] u + x[4] v + x[5]. */
+    double cur_uvxf[6];
 } gltf;
 
 static int numbers(const cJSON *a, int n, double *out);
@@ -346,8 +349,9 @@ static int append(gltf *g, const double *xf, size_t nv, const double *pos, const
             double l = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
             for (int k = 0; k < 3; k++) m->nrm[3 * (m->nv + i) + (size_t)k] = l > 0 ? (float)(t[k] / l) : 0.0f;
         }
-        m->uv[2 * (m->nv + i)] = uv ? (float)uv[2 * i] : 0.0f;
-        m->uv[2 * (m->nv + i) + 1] = uv ? (float)uv[2 * i + 1] : 0.0f;
+        const double *x = g->cur_uvxf, u = uv ? uv[2 * i] : 0.0, w = uv ? uv[2 * i + 1] : 0.0;
+        m->uv[2 * (m->nv + i)] = (float)(x[0] * u + x[1] * w + x[2]);
+        m->uv[2 * (m->nv + i) + 1] = (float)(x[3] * u + x[4] * w + x[5]);
         /* The vertex's colour: factor times COLOR_0 (linear in glTF), and
          * whether the texture applies (not without coordinates). */
         uint8_t *oc = m->col + 4 * (m->nv + i);
@@ -491,12 +495,35 @@ static void take_colour(gltf *g, const cJSON *mat)
         note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "a colour texture on a second set of texture coordinates");
         return;
     }
-    if (get(get(bt, "extensions"), "KHR_texture_transform"))
-        note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "KHR_texture_transform");
+    const cJSON *tt = get(get(bt, "extensions"), "KHR_texture_transform");
+    if (tt && count_field(tt, "texCoord", 0) != 0) {
+        note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "a colour texture on a second set of texture coordinates");
+        return;
+    }
     if (g->texture < 0) g->texture = (int)tex;
     if (g->texture == (int)tex) {
         g->cur_textured = 1;
         g->coloured = 1;
+        /* KHR_texture_transform: T(offset) R(rotation) S(scale) on the
+         * coordinates, as the extension's GLSL has it (rotation
+         * counter-clockwise). gltfpack and glTF-Transform write it to undo
+         * their quantized coordinates (KHR_mesh_quantization). Values
+         * that are not finite, or past 1e6, leave the coordinates as they
+         * are and are said. */
+        double off[2] = {0, 0}, sc[2] = {1, 1}, rot = 0;
+        const cJSON *r = get(tt, "rotation");
+        int ok = (!get(tt, "offset") || numbers(get(tt, "offset"), 2, off)) &&
+                 (!get(tt, "scale") || numbers(get(tt, "scale"), 2, sc)) && (!r || cJSON_IsNumber(r));
+        if (r && ok) rot = r->valuedouble;
+        for (int k = 0; k < 2; k++) ok = ok && fabs(off[k]) <= 1e6 && fabs(sc[k]) <= 1e6;
+        ok = ok && fabs(rot) <= 1e6;
+        if (tt && !ok) {
+            note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "a KHR_texture_transform out of range");
+        } else if (tt) {
+            double c = cos(rot), s = sin(rot);
+            double x[6] = {c * sc[0], -s * sc[1], off[0], s * sc[0], c * sc[1], off[1]};
+            memcpy(g->cur_uvxf, x, sizeof x);
+        }
     } else {
         g->other_textures++;
     }
@@ -507,6 +534,8 @@ static void take_material(gltf *g, const cJSON *prim)
     const cJSON *mat = at(&g->materials, get(prim, "material"));
     for (int k = 0; k < 3; k++) g->cur_factor[k] = 1.0;
     g->cur_textured = 0;
+    static const double identity[6] = {1, 0, 0, 0, 1, 0};
+    memcpy(g->cur_uvxf, identity, sizeof identity);
     take_colour(g, mat);
     take_medium(g, mat);
     const cJSON *name = get(get(mat, "extras"), "jade_material");
@@ -810,7 +839,13 @@ int jd_gltf_read(const uint8_t *buf, size_t n, const char *path, const jd_gltf_l
         goto done;
     }
     const cJSON *req = get(root, "extensionsRequired"), *e;
-    cJSON_ArrayForEach(e, req) if (!cJSON_IsString(e) || strcmp(e->valuestring, "KHR_draco_mesh_compression")) {
+    /* KHR_mesh_quantization only widens the component types attributes may
+     * have, which read_accessor reads whatever the attribute;
+     * KHR_texture_transform is applied to the colour texture's coordinates
+     * (take_colour). */
+    cJSON_ArrayForEach(e, req) if (!cJSON_IsString(e) || (strcmp(e->valuestring, "KHR_draco_mesh_compression") &&
+                                                          strcmp(e->valuestring, "KHR_mesh_quantization") &&
+                                                          strcmp(e->valuestring, "KHR_texture_transform"))) {
         fail(&g, "glTF requires extension %s, which jade does not read", cJSON_IsString(e) ? e->valuestring : "(not a name)");
         goto done;
     }

@@ -2,10 +2,16 @@
  * flattened on one side and thin at one end, with a veined colour texture;
  * written as a glTF with everything embedded, an OBJ with its MTL and PNG,
  * and a PLY with vertex colours. Run by tools/make_textured_assets.sh. With
- * --checker, the test model of tests/textures.sh (built by the tests).
+ * --checker, the test model of tests/textures.sh (built by the tests); with
+ * --quantized, the pebble as gltfpack and glTF-Transform write a glTF by
+ * default (KHR_mesh_quantization: 16-bit positions placed by the node,
+ * 8-bit normals, 16-bit coordinates that KHR_texture_transform maps back;
+ * here turned a quarter round, so that the transform's rotation is tested
+ * too), for tests/textures.sh.
  *
  *   gen_textured OUTDIR
- *   gen_textured --checker OUT.gltf SHIFT */
+ *   gen_textured --checker OUT.gltf SHIFT
+ *   gen_textured --quantized OUT.gltf */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -84,6 +90,26 @@ static void build(void)
         }
 }
 
+/* The one primitive every model here has: its attributes, indices and
+ * material by index. */
+#define PRIMITIVE_JSON                                                                                              \
+    "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2},\"indices\":3," \
+    "\"material\":0}]}],"
+
+/* The pebble's box. */
+static void box(float lo[3], float hi[3])
+{
+    for (int k = 0; k < 3; k++) {
+        lo[k] = 1e9f;
+        hi[k] = -1e9f;
+    }
+    for (int i = 0; i < NV; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], pos[i][k]);
+            hi[k] = fmaxf(hi[k], pos[i][k]);
+        }
+}
+
 static char *b64(const unsigned char *d, size_t n)
 {
     static const char t[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -157,8 +183,7 @@ static int checker(const char *out, float shift)
     if (!f) { perror(out); return 1; }
     fprintf(f,
             "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
-            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2},\"indices\":3,"
-            "\"material\":0}]}],\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+            PRIMITIVE_JSON "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
             "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
             "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
             "\"bufferViews\":[{\"buffer\":0,\"byteLength\":96},{\"buffer\":0,\"byteOffset\":96,\"byteLength\":96},"
@@ -176,10 +201,78 @@ static int checker(const char *out, float shift)
     return 0;
 }
 
+/* The pebble quantized: positions as unsigned 16-bit integers over the
+ * mesh's box, which the node's scale (one for the three axes, as gltfpack
+ * has it: a scale per axis would turn the normals, which stay the mesh's
+ * own) and translation undo; normals as
+ * normalized signed bytes (4-byte stride, as the extension requires);
+ * texture coordinates (u, v) stored as (v, 1 - u) in normalized unsigned
+ * 16 bits, which KHR_texture_transform's rotation of a quarter turn and
+ * offset (1, 0) take back to (u, v). */
+static int quantized(const char *outpath)
+{
+    build();
+    struct { unsigned char *p; size_t n; } png = {0, 0};
+    stbi_write_png_to_func(collect, &png, TEX, TEX, 3, tex, TEX * 3);
+    float lo[3], hi[3];
+    box(lo, hi);
+    float ext = fmaxf(hi[0] - lo[0], fmaxf(hi[1] - lo[1], hi[2] - lo[2]));
+    size_t bp = (size_t)NV * 8, bn = (size_t)NV * 4, bu = (size_t)NV * 4, bi = sizeof idx;
+    unsigned char *buf = calloc(1, bp + bn + bu + bi);
+    for (int i = 0; i < NV; i++) {
+        unsigned short q[4] = {0, 0, 0, 0};
+        for (int k = 0; k < 3; k++) q[k] = (unsigned short)lrintf((pos[i][k] - lo[k]) / ext * 65535.0f);
+        memcpy(buf + 8 * (size_t)i, q, 8);
+        signed char nb[4] = {0, 0, 0, 0};
+        for (int k = 0; k < 3; k++) nb[k] = (signed char)lrintf(nrm[i][k] * 127.0f);
+        memcpy(buf + bp + 4 * (size_t)i, nb, 4);
+        unsigned short t[2] = {(unsigned short)lrintf(uv[i][1] * 65535.0f), (unsigned short)lrintf((1.0f - uv[i][0]) * 65535.0f)};
+        memcpy(buf + bp + bn + 4 * (size_t)i, t, 4);
+    }
+    memcpy(buf + bp + bn + bu, idx, bi);
+    char *b64buf = b64(buf, bp + bn + bu + bi), *b64png = b64(png.p, png.n);
+    FILE *f = fopen(outpath, "w");
+    if (!f) { perror(outpath); return 1; }
+    fprintf(f,
+            "{\"asset\":{\"version\":\"2.0\",\"generator\":\"jade tools/gen_textured.c --quantized\"},\"scene\":0,"
+            "\"extensionsUsed\":[\"KHR_mesh_quantization\",\"KHR_texture_transform\"],"
+            "\"extensionsRequired\":[\"KHR_mesh_quantization\",\"KHR_texture_transform\"],"
+            "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"translation\":[%.9g,%.9g,%.9g],"
+            "\"scale\":[%.9g,%.9g,%.9g]}],"
+            PRIMITIVE_JSON
+            "\"materials\":[{\"name\":\"veined\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0,"
+            "\"extensions\":{\"KHR_texture_transform\":{\"offset\":[1,0],\"rotation\":1.5707963267948966}}},"
+            "\"metallicFactor\":0}}],"
+            "\"textures\":[{\"source\":0,\"sampler\":0}],\"samplers\":[{\"wrapS\":10497,\"wrapT\":10497}],"
+            "\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+            "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+            "\"bufferViews\":[{\"buffer\":0,\"byteLength\":%zu,\"byteStride\":8},{\"buffer\":0,\"byteOffset\":%zu,"
+            "\"byteLength\":%zu,\"byteStride\":4},{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu,\"byteStride\":4},"
+            "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}],"
+            "\"accessors\":[{\"bufferView\":0,\"componentType\":5123,\"count\":%d,\"type\":\"VEC3\",\"min\":[0,0,0],"
+            "\"max\":[%d,%d,%d]},{\"bufferView\":1,\"componentType\":5120,\"normalized\":true,\"count\":%d,"
+            "\"type\":\"VEC3\"},{\"bufferView\":2,\"componentType\":5123,\"normalized\":true,\"count\":%d,"
+            "\"type\":\"VEC2\"},{\"bufferView\":3,\"componentType\":5125,\"count\":%d,\"type\":\"SCALAR\"}]}\n",
+            lo[0], lo[1], lo[2], ext / 65535.0, ext / 65535.0, ext / 65535.0, b64png,
+            bp + bn + bu + bi, b64buf, bp, bp, bn, bp + bn, bu, bp + bn + bu, bi, NV,
+            (int)lrintf((hi[0] - lo[0]) / ext * 65535.0f), (int)lrintf((hi[1] - lo[1]) / ext * 65535.0f),
+            (int)lrintf((hi[2] - lo[2]) / ext * 65535.0f), NV, NV, NT * 3);
+    fclose(f);
+    free(buf);
+    free(b64buf);
+    free(b64png);
+    free(png.p);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc == 4 && !strcmp(argv[1], "--checker")) return checker(argv[2], (float)atof(argv[3]));
-    if (argc != 2) { fprintf(stderr, "usage: gen_textured OUTDIR | --checker OUT.gltf SHIFT\n"); return 2; }
+    if (argc == 3 && !strcmp(argv[1], "--quantized")) return quantized(argv[2]);
+    if (argc != 2) {
+        fprintf(stderr, "usage: gen_textured OUTDIR | --checker OUT.gltf SHIFT | --quantized OUT.gltf\n");
+        return 2;
+    }
     const char *dir = argv[1];
     build();
     struct { unsigned char *p; size_t n; } png = {0, 0};
@@ -197,18 +290,13 @@ int main(int argc, char **argv)
     memcpy(buf + bp + bn, uv, bu);
     memcpy(buf + bp + bn + bu, idx, bi);
     char *b64buf = b64(buf, bp + bn + bu + bi), *b64png = b64(png.p, png.n);
-    float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
-    for (int i = 0; i < NV; i++)
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fminf(lo[k], pos[i][k]);
-            hi[k] = fmaxf(hi[k], pos[i][k]);
-        }
+    float lo[3], hi[3];
+    box(lo, hi);
     f = out(dir, "pebble.gltf");
     fprintf(f,
             "{\"asset\":{\"version\":\"2.0\",\"generator\":\"jade tools/gen_textured.c\"},\"scene\":0,"
             "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
-            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2},\"indices\":3,"
-            "\"material\":0}]}],"
+            PRIMITIVE_JSON
             "\"materials\":[{\"name\":\"veined\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0},"
             "\"metallicFactor\":0}}],"
             "\"textures\":[{\"source\":0,\"sampler\":0}],\"samplers\":[{\"wrapS\":10497,\"wrapT\":10497}],"

@@ -155,6 +155,12 @@ g['materials'] = [{'pbrMetallicRoughness': {'baseColorTexture': {'index': 0}, 'b
 g['textures'] = [{'source': 0}]
 g['images'] = [{'uri': 'data:image/png;base64,' + base64.b64encode(png).decode()}]
 open(f'{c}/fuzz_gltf/tet_texture.gltf', 'w').write(json.dumps(g))
+# The same as gltfpack writes it: the extensions its quantization needs
+# required, the texture's coordinates through KHR_texture_transform.
+g['materials'][0]['pbrMetallicRoughness']['baseColorTexture']['extensions'] = {
+    'KHR_texture_transform': {'offset': [0.5, 0], 'rotation': 0.3, 'scale': [2, 2]}}
+g['extensionsUsed'] = g['extensionsRequired'] = ['KHR_mesh_quantization', 'KHR_texture_transform']
+open(f'{c}/fuzz_gltf/tet_quant.gltf', 'w').write(json.dumps(g))
 PY
 # Argument lists: the first byte picks the command (0 render, 1 bench,
 # 2 info, 3 view, 4 kiosk, 5 reference, 6 metric), then NUL-separated words.
