@@ -473,6 +473,27 @@ static void take_medium(gltf *g, const cJSON *mat)
     if (md->ignored[0]) md->flags |= JD_MEDIUM_NOTE;
 }
 
+/* KHR_texture_transform into the primitive's coordinate transform:
+ * T(offset) R(rotation) S(scale), as the extension's GLSL has it (rotation
+ * counter-clockwise). gltfpack and glTF-Transform write it to undo their
+ * quantized coordinates (KHR_mesh_quantization). Values that are not
+ * finite, or past 1e6, leave the coordinates as they are and are said. */
+static void take_texture_transform(gltf *g, const cJSON *tt)
+{
+    double off[2] = {0, 0}, sc[2] = {1, 1}, rot = 0;
+    const cJSON *o = get(tt, "offset"), *sv = get(tt, "scale"), *r = get(tt, "rotation");
+    int ok = (!o || numbers(o, 2, off)) && (!sv || numbers(sv, 2, sc)) && (!r || cJSON_IsNumber(r));
+    if (r && ok) rot = r->valuedouble;
+    for (int k = 0; k < 2; k++) ok = ok && fabs(off[k]) <= 1e6 && fabs(sc[k]) <= 1e6;
+    if (!ok || !(fabs(rot) <= 1e6)) {
+        note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "a KHR_texture_transform out of range");
+        return;
+    }
+    double c = cos(rot), s = sin(rot);
+    double x[6] = {c * sc[0], -s * sc[1], off[0], s * sc[0], c * sc[1], off[1]};
+    memcpy(g->cur_uvxf, x, sizeof x);
+}
+
 /* The material's colour (glTF's metallic-roughness base colour, read as the
  * diffuse reflectance): its factor, and its texture where it is the one jade
  * shows (the first the scene uses; a model with several gets the others'
@@ -491,12 +512,10 @@ static void take_colour(gltf *g, const cJSON *mat)
     if (!bt) return;
     double tex = count_field(bt, "index", -1);
     if (tex < 0 || tex >= g->textures.count) return; /* checked when decoded: a missing one is ignored */
-    if (count_field(bt, "texCoord", 0) != 0) {
-        note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "a colour texture on a second set of texture coordinates");
-        return;
-    }
+    /* A second coordinate set, named by the textureInfo or by its
+     * transform, is not read. */
     const cJSON *tt = get(get(bt, "extensions"), "KHR_texture_transform");
-    if (tt && count_field(tt, "texCoord", 0) != 0) {
+    if (count_field(bt, "texCoord", 0) != 0 || count_field(tt, "texCoord", 0) != 0) {
         note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "a colour texture on a second set of texture coordinates");
         return;
     }
@@ -504,26 +523,7 @@ static void take_colour(gltf *g, const cJSON *mat)
     if (g->texture == (int)tex) {
         g->cur_textured = 1;
         g->coloured = 1;
-        /* KHR_texture_transform: T(offset) R(rotation) S(scale) on the
-         * coordinates, as the extension's GLSL has it (rotation
-         * counter-clockwise). gltfpack and glTF-Transform write it to undo
-         * their quantized coordinates (KHR_mesh_quantization). Values
-         * that are not finite, or past 1e6, leave the coordinates as they
-         * are and are said. */
-        double off[2] = {0, 0}, sc[2] = {1, 1}, rot = 0;
-        const cJSON *r = get(tt, "rotation");
-        int ok = (!get(tt, "offset") || numbers(get(tt, "offset"), 2, off)) &&
-                 (!get(tt, "scale") || numbers(get(tt, "scale"), 2, sc)) && (!r || cJSON_IsNumber(r));
-        if (r && ok) rot = r->valuedouble;
-        for (int k = 0; k < 2; k++) ok = ok && fabs(off[k]) <= 1e6 && fabs(sc[k]) <= 1e6;
-        ok = ok && fabs(rot) <= 1e6;
-        if (tt && !ok) {
-            note(g->out->medium.ignored, sizeof g->out->medium.ignored, "; ", "a KHR_texture_transform out of range");
-        } else if (tt) {
-            double c = cos(rot), s = sin(rot);
-            double x[6] = {c * sc[0], -s * sc[1], off[0], s * sc[0], c * sc[1], off[1]};
-            memcpy(g->cur_uvxf, x, sizeof x);
-        }
+        if (tt) take_texture_transform(g, tt);
     } else {
         g->other_textures++;
     }
