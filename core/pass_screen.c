@@ -214,7 +214,7 @@ void jdr_pass_wide(jd_renderer *r, const jd_scene *s, const frame_params *f)
     r->wide.w = (r->iw + div - 1) / div;
     r->wide.h = (r->ih + div - 1) / div;
     draw_layer(r, &r->wide, &r->wide_prog, f, 1, "wide");
-    jdr_counted_trips(r, 4); /* jd_level_at's texels */
+    jdr_counted_trips(r, r->wide_unrolled ? 1 : 4); /* jd_level_at's texels */
 }
 
 void jdr_pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)

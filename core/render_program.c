@@ -312,11 +312,20 @@ static jd_result build_full(jd_renderer *r, jd_error *err)
     jd_result res = build_shade(r, JD_MODE_FULL, err);
     if (res) return res;
     if (!r->vertex_diffusion) {
+        /* The two narrowest levels' 2 x 2 texels (light.glsl, jd_level_at)
+         * as straight code where the GPU can hold it: each trip of the two
+         * loops cost lima 75 words, 32 of them the loops' own tests and
+         * branches, so 4 trips took 408 words a fragment where the code
+         * unrolled takes 274 (3:7 spills); Midgard 264 -> 126 bundles.
+         * Vivante GC400-GC2000 keep the loop: unrolled it does not fit
+         * their 256 instructions. */
+        r->wide_unrolled = !r->d.caps->max_program_instructions;
         snprintf(def, sizeof def,
                  "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT 0\n#define JD_SPREAD 0\n#define JD_A0_ONLY 0\n"
                  "#define JD_VERTEX_THICKNESS 0\n#define JD_FULL 1\n#define JD_VERTEX_DIFFUSION 0\n"
-                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n#define JD_ALBEDO_PARTIAL 0\n",
-                 r->highp);
+                 "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n#define JD_ALBEDO_PARTIAL 0\n"
+                 "%s",
+                 r->highp, r->wide_unrolled ? "#define JD_TRIPS 4\n" : "");
         if ((res = build(r, 3, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
                          err)))
             return res;

@@ -128,6 +128,7 @@ struct jd_renderer {
     struct mesh_chunk { size_t index_offset, vertex_offset; uint32_t count, vertices; } *chunks;
     int num_chunks;
     shade_prog shade[JD_MODE_COUNT], a0, wide_prog; /* wide_prog: full's levels at half resolution */
+    int wide_unrolled;    /* wide_prog built with its texel loops unrolled (JD_TRIPS) */
     GLuint depth_prog, capture_prog, project_prog, reduce_mid_prog, reduce_faces_prog, reduce_final_prog, blur_prog,
         combine_prog;
     diff_prog diff_first, diff_next; /* level 1 from the light map; the others */

@@ -137,17 +137,18 @@ float jd_level_at(sampler2D lv, vec3 p, float d, float s, float slack, float lit
     // loop (with the texel centres held as well, lima's wide pass took 12
     // instruction words more).
     vec2 f = fract(p.xy / d - 0.5);
-    // A loop over the four texels. In a fragment stage it stays a loop:
-    // unrolled, lima held all four texels' values at once and spilled (5:20
-    // in the wide pass). Its count must not look constant, or Mesa's NIR
-    // unrolls it: d > 0, so the break comes after 4. A vertex stage unrolls
-    // it (as a loop, vc4's vertex shader doubled in length).
+    // A loop over the four texels, unrolled where the program is built with
+    // JD_TRIPS (render_program.c: every GPU but Vivante GC400-GC2000, whose
+    // 256 instructions it would not fit; each trip's own test and branches
+    // cost lima 16 words). Kept a loop, its count must not look constant, or
+    // Mesa's NIR unrolls it: d > 0, so the break comes after 4. A vertex
+    // stage unrolls it (as a loop, vc4's vertex shader doubled in length).
     // JD_UNROLL (the device-compiler tool only): a constant trip count, so
     // the compilers' counts say what one more trip costs.
     float l = 0.0;
 #if defined(JD_UNROLL)
     for (int i = 0; i < JD_UNROLL; i++) {
-#elif defined(JD_FRAGMENT)
+#elif defined(JD_FRAGMENT) && !defined(JD_TRIPS)
     for (int i = 0; i < 64; i++) {
         if (float(i) >= 4.0 * step(0.0, d)) break;
 #else
