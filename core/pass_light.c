@@ -236,6 +236,22 @@ void jdr_pass_diffusion(jd_renderer *r, const jd_scene *s, const frame_params *f
         int taps = jdr_diffusion_taps(r, k, &step, &st);
         tmp->w = dst->w;
         tmp->h = src->h;
+        /* The vertical pass's taps reach a few rows past those the
+         * horizontal one writes, and tmp is as tall as the light map: there
+         * lay a wider level's rows from earlier in the frame (light from the
+         * middle of the map, at its edge) or, never written, whatever the
+         * memory held (a new texture's contents are undefined, and a driver
+         * that reuses freed buffers hands over another target's data). A
+         * band of no light there (depth 1, S 0: the normalised convolution
+         * leaves it out), as past the light map's edge. */
+        int band = (int)ceilf((float)taps * step) + 1;
+        if (band > tmp->th - tmp->h) band = tmp->th - tmp->h;
+        if (band > 0) {
+            glBindFramebuffer(GL_FRAMEBUFFER, tmp->fbo);
+            glScissor(0, tmp->h, tmp->w, band);
+            glClearColor(0.0f, 1.0f, 0.0f, 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT);
+        }
         char what[24];
         snprintf(what, sizeof what, "diffusion-%dh", k + 1);
         diffuse_step(r, &r->diff_next, src, tmp, step / (float)src->tw, 0.0f, taps, st, 0, near, what);

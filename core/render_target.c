@@ -30,6 +30,25 @@ GLuint jdr_new_texture(int w, int h, GLint filter)
     return tex;
 }
 
+/* Every texel of the bound framebuffer's colour defined (0) from the
+ * start: GLES leaves a new texture's contents undefined, and a driver that
+ * reuses freed buffers (Mesa's lima keeps a cache of them) hands over
+ * another target's data, which a pass whose taps or filtering reach past
+ * the region it wrote would draw (the spread's blur at its edges;
+ * tests/undefined_texels.sh fills new textures with noise). Once, at
+ * set-up: no frame pays for it. */
+static void clear_whole(void)
+{
+    GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST), mask[4];
+    glGetBooleanv(GL_COLOR_WRITEMASK, mask);
+    glDisable(GL_SCISSOR_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glColorMask(mask[0], mask[1], mask[2], mask[3]);
+    if (scissor) glEnable(GL_SCISSOR_TEST);
+}
+
 jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_depth, int linear,
                              const char *what, jd_error *err)
 {
@@ -56,6 +75,7 @@ jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_dept
     GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (st != GL_FRAMEBUFFER_COMPLETE)
         return jd_fail(err, JD_ERR_GL, "%s framebuffer %dx%d is incomplete (0x%x)", what, w, h, st);
+    clear_whole();
     return JD_OK;
 }
 
@@ -76,6 +96,7 @@ jd_result jdr_make_cube_target(jd_renderer *r, target *faces, int size, const ch
         GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
         if (st != GL_FRAMEBUFFER_COMPLETE)
             return jd_fail(err, JD_ERR_GL, "%s face %d (%dx%d) is incomplete (0x%x)", what, f, size, size, st);
+        clear_whole();
     }
     r->target_bytes += (size_t)6 * size * size * 4;
     return JD_OK;

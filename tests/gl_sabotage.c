@@ -3,7 +3,11 @@
  * source contains MARKER fail to compile (a compiler that rejects it);
  * MARKER:drop makes such a fragment shader compile and link but draw
  * nothing (a driver that skips the draws of a program it could not
- * register-allocate, as Mesa's vc4 does). Counts what it did on stderr. */
+ * register-allocate, as Mesa's vc4 does). Counts what it did on stderr.
+ * JD_POISON_TEXTURES=1 (tests/undefined_texels.sh) fills every texture made
+ * without data with noise: what GLES 2.0 leaves undefined, and what a
+ * driver that hands out freed buffers again (Mesa's lima keeps a cache of
+ * them) really gives. */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <stdio.h>
@@ -16,10 +20,11 @@ typedef char GLchar;
 #define GL_SHADER_TYPE 0x8B4F
 #define GL_FRAGMENT_SHADER 0x8B30
 
-static int hits;
+static int hits, poisoned;
 static void report(void)
 {
     if (getenv("JD_SABOTAGE")) fprintf(stderr, "gl_sabotage: %d shaders changed\n", hits);
+    if (getenv("JD_POISON_TEXTURES")) fprintf(stderr, "gl_sabotage: %d textures poisoned\n", poisoned);
 }
 __attribute__((constructor)) static void start(void) { atexit(report); }
 
@@ -53,4 +58,28 @@ void glShaderSource(GLuint shader, GLsizei count, const GLchar *const *string, c
     } else {
         real(shader, count, string, length);
     }
+}
+
+#define GL_RGBA 0x1908
+#define GL_UNSIGNED_BYTE 0x1401
+void glTexImage2D(GLenum target, GLint level, GLint internal, GLsizei w, GLsizei h, GLint border, GLenum format,
+                  GLenum type, const void *pixels)
+{
+    static void (*real)(GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void *);
+    if (!real)
+        real = (void (*)(GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void *))dlsym(
+            RTLD_NEXT, "glTexImage2D");
+    unsigned char *noise = NULL;
+    if (!pixels && getenv("JD_POISON_TEXTURES") && format == GL_RGBA && type == GL_UNSIGNED_BYTE && w > 0 && h > 0 &&
+        (noise = malloc((size_t)w * (size_t)h * 4))) {
+        /* Bytes of every value, different in each texture and channel. */
+        static unsigned int x = 12345u;
+        for (size_t i = 0; i < (size_t)w * (size_t)h * 4; i++) {
+            x = x * 1103515245u + 12345u;
+            noise[i] = (unsigned char)(x >> 16);
+        }
+        poisoned++;
+    }
+    real(target, level, internal, w, h, border, format, type, noise ? noise : pixels);
+    free(noise);
 }
