@@ -139,8 +139,14 @@ static void draw_layer(jd_renderer *r, const target *t, const shade_prog *p, con
                        const char *what)
 {
     jdr_use_target(r, t, what);
+    /* A texel past the layer's region too: the picture reads the layer
+     * filtered, and at its top and right edges the filter reaches the
+     * texel beyond, which a frame with a larger layer (the camera farther)
+     * left there (tests/test_frame_history.c). */
+    glScissor(0, 0, t->w < t->tw ? t->w + 1 : t->w, t->h < t->th ? t->h + 1 : t->h);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glScissor(0, 0, t->w, t->h);
     glEnable(GL_DEPTH_TEST);
     if (r->d.no_cull) glDisable(GL_CULL_FACE); else glEnable(GL_CULL_FACE);
     set_shade_uniforms(r, p, f, t->w, t->h);
