@@ -88,7 +88,8 @@ int main(void)
     /* Scene A close up (the sphere past the picture's edges) after B from
      * farther (a larger half-resolution layer) or nearer, with the light
      * elsewhere or the same. */
-    const float before[][2] = {{1.3f, 0.0f}, {1.6f, 0.0f}, {2.0f, 40.0f}, {2.5f, 0.0f}, {3.2f, 0.0f}, {0.9f, 0.0f}};
+    const float before[][2] = {{1.3f, 0.0f}, {1.6f, 0.0f}, {2.0f, 40.0f}, {2.5f, 0.0f}, {3.2f, 0.0f}, {0.9f, 0.0f},
+                               {1.15f, 0.0f}};
     const int nb = (int)(sizeof before / sizeof before[0]);
     for (int p = 0; p < 2; p++) {
         jd_gl_caps caps = generic;
@@ -103,6 +104,13 @@ int main(void)
                 seq[0] = seq[1];
                 seq[0].cam_distance = before[b][0];
                 seq[0].light_azimuth += before[b][1];
+                if (b == nb - 1) { /* the frame before in another material, exposed twice as long */
+                    jd_scene_defaults(&seq[0], jd_material_find("skin1"));
+                    seq[0].mode = modes[k];
+                    seq[0].cam_distance = seq[1].cam_distance;
+                    seq[0].light_azimuth = seq[1].light_azimuth;
+                    seq[0].exposure = 2.0f * seq[1].exposure;
+                }
                 if (!draw(&m, &caps, &seq[1], 1, fresh) || !draw(&m, &caps, seq, 2, after)) continue;
                 int differ = 0, most = 0;
                 for (int i = 0; i < W * H * 4; i++)
@@ -111,9 +119,10 @@ int main(void)
                         int dd = fresh[i] > after[i] ? fresh[i] - after[i] : after[i] - fresh[i];
                         most = dd > most ? dd : most;
                     }
-                printf("%s, %s, after a frame at distance %.2f, light %+g degrees: %d channels differ (at most %d)\n",
-                       profiles[p] ? profiles[p] : "generic", modes[k] == JD_MODE_FULL ? "full" : "dual", before[b][0],
-                       before[b][1], differ, most);
+                printf("%s, %s, after a frame %s %.2f, light %+g degrees: %d channels differ (at most %d)\n",
+                       profiles[p] ? profiles[p] : "generic", modes[k] == JD_MODE_FULL ? "full" : "dual",
+                       b == nb - 1 ? "in skin1, exposure x 2, at distance" : "at distance", before[b][0], before[b][1],
+                       differ, most);
                 CHECK(differ == 0, "the picture of a scene does not depend on the frame before");
             }
     }
