@@ -1,11 +1,12 @@
 /* A frame's picture depends on its scene alone, not on the frames drawn
- * before it: a kiosk whose camera comes closer, or whose light moves, must
- * draw what a renderer made for that scene would. One renderer draws scene
- * B, then scene A; a fresh one draws A; the two pictures of A must be the
- * same to the bit. The object (a sphere made here) overfills the picture
- * close up, so that every layer's texels at the picture's edges are read;
- * under the generic caps and the mali400 profile (full's levels summed in a
- * half-resolution layer), in full and dual. */
+ * before it: a viewer whose camera comes closer, or whose light or material
+ * changes, must draw what a renderer made for that scene would. One
+ * renderer draws scene B, then scene A; a fresh one draws A; the two
+ * pictures of A must be the same to the bit. The object (a sphere made
+ * here) overfills the picture close up, so that every layer's texels at the
+ * picture's edges are read; under the generic caps and the mali400 profile
+ * (full's levels summed in a half-resolution layer), in full and dual. (The
+ * kiosk keeps its camera's distance; jade view zooms.) */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
