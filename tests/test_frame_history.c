@@ -40,7 +40,7 @@ static void sphere(uint32_t *nv, uint32_t *ni)
     for (int j = 0; j < SEG; j++)
         for (int i = 0; i < SEG; i++) {
             uint32_t a = (uint32_t)(j * (SEG + 1) + i), b = a + 1, c = a + SEG + 1, d = c + 1;
-            uint32_t t[6] = {a, c, b, b, c, d};
+            uint32_t t[6] = {a, b, c, b, d, c}; /* counter-clockwise seen from outside, as the normals */
             memcpy(idx + *ni, t, sizeof t);
             *ni += 6;
         }
