@@ -14,7 +14,9 @@ typedef struct jd_mesh {
     uint32_t num_vertices;
     uint32_t num_indices;   /* 3 per triangle */
     float *positions;       /* 3 per vertex */
-    float *normals;         /* 3 per vertex, unit length */
+    float *normals;         /* 3 per vertex, unit length, to the side the triangles face (counter-
+                             * clockwise seen from it, GL's front): jade draws the front faces and
+                             * lights the side the normals give (jd_mesh_normals_follow_winding) */
     float *uvs;             /* 2 per vertex, or NULL */
     void *indices;          /* uint16_t when index_size == 2, else uint32_t */
     int index_size;

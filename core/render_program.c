@@ -113,6 +113,7 @@ static void shade_locations(shade_prog *p)
     p->slab_scale = glGetUniformLocation(id, "u_slab_scale");
     p->slab_scale_v = glGetUniformLocation(id, "u_slab_scale_v");
     p->keep = glGetUniformLocation(id, "u_keep");
+    p->spec = glGetUniformLocation(id, "u_spec");
 }
 
 /* The constant trip count the diffusion program is built with, or 0 for
@@ -172,8 +173,17 @@ static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_err
 
 static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
 {
-    char def[560];
+    char def[800];
     int translucent = m == JD_MODE_SINGLE || m == JD_MODE_DUAL, map = r->albedo_tex != 0;
+    /* full's highlight from its table (pass_screen.c, jdr_update_spec):
+     * the table's coordinates from n.n and n.h, each end at its texel's
+     * centre. */
+    char spec[200] = "";
+    if (m == JD_MODE_FULL && r->spec_tex)
+        snprintf(spec, sizeof spec,
+                 "#define JD_SPEC_TABLE 1\n#define JD_SPEC_SCALE vec2(%.9g, %.9g)\n#define JD_SPEC_OFFSET vec2(%.9g, %.9g)\n",
+                 (SPEC_W - 1) / (SPEC_W * (1.0 - SPEC_NN)), (double)(SPEC_H - 1) / SPEC_H,
+                 (0.5 - SPEC_NN * (SPEC_W - 1) / (1.0 - SPEC_NN)) / SPEC_W, 0.5 / SPEC_H);
     /* The model's own colours (JD_ALBEDO: per vertex; _MAP: its texture too)
      * only in the programs that draw the picture: the light-space and
      * low-resolution passes carry light, and the picture's pass multiplies
@@ -182,9 +192,10 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
              "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
              "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO %d\n#define JD_ALBEDO_MAP %d\n"
-             "#define JD_ALBEDO_PARTIAL %d\n%s",
+             "#define JD_ALBEDO_PARTIAL %d\n#define JD_TWO_SIDED %d\n%s%s",
              r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
              m == JD_MODE_FULL && !r->vertex_diffusion, r->albedo, r->albedo && map, r->albedo && map && r->albedo_partial,
+             r->d.no_cull, spec,
              /* Full summed per vertex reads the light map and five levels
               * there, the light map and the colour texture per fragment:
               * the light through thin parts' table is one sampler more,

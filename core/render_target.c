@@ -30,6 +30,16 @@ GLuint jdr_new_texture(int w, int h, GLint filter)
     return tex;
 }
 
+/* A one-byte (luminance) table, filtered: its texels come with their
+ * first glTexSubImage2D, before any pass reads it. w: a multiple of 4
+ * (GL's default row alignment). */
+GLuint jdr_new_table(int w, int h)
+{
+    GLuint tex = new_sampled(GL_TEXTURE_2D, GL_LINEAR);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, w, h, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE, NULL);
+    return tex;
+}
+
 /* Every texel of the bound framebuffer's colour defined (0) from the
  * start: GLES leaves a new texture's contents undefined, and a driver that
  * reuses freed buffers (Mesa's lima keeps a cache of them) hands over

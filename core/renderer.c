@@ -131,6 +131,10 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     if ((res = jd_mesh_build_proxy(d->mesh, d->capture_cells, a, &r->capture_proxy, err))) return res;
     r->tail_px = jd_arena_alloc(a, TAIL_SIZE * 4, 16, "dipole tail table", err);
     if (!r->tail_px) return JD_ERR_BUDGET;
+    if (!r->vertex_diffusion) {
+        r->spec_px = jd_arena_alloc(a, SPEC_W * SPEC_H, 16, "highlight table", err);
+        if (!r->spec_px) return JD_ERR_BUDGET;
+    }
 
     const jd_mesh *m = d->mesh;
     jd_vec3 c, ext = jd_v3_sub(m->bmax, m->bmin);
@@ -186,6 +190,11 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     r->slab_tex = jdr_new_texture(SLAB_SIZE, 2, GL_LINEAR);
     r->target_bytes += (TAIL_SIZE + 2 * SLAB_SIZE) * 4;
     r->tail_key[0] = -1.0f; /* no table yet */
+    if (r->spec_px) {
+        r->spec_tex = jdr_new_table(SPEC_W, SPEC_H);
+        r->target_bytes += SPEC_W * SPEC_H;
+        r->spec_key = -1.0f;
+    }
     r->mesh_index_type = m->index_size == 2 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
     static const float quad[] = {-1, -1, 1, -1, -1, 1, 1, 1};
     glGenBuffers(1, &r->quad_vbo);
@@ -257,6 +266,7 @@ void jd_renderer_destroy(jd_renderer *r)
     glDeleteBuffers(8, bufs);
     if (r->tail_tex) glDeleteTextures(1, &r->tail_tex);
     if (r->slab_tex) glDeleteTextures(1, &r->slab_tex);
+    if (r->spec_tex) glDeleteTextures(1, &r->spec_tex);
     if (r->albedo_tex) glDeleteTextures(1, &r->albedo_tex);
     if (r->tq.ok) r->tq.del(JD_PASS_COUNT, r->tq.q);
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
@@ -487,10 +497,12 @@ typedef struct plan_step {
 
 static int levels_on_screen(const jd_renderer *r) { return !r->vertex_diffusion; }
 static int pass_after(const jd_renderer *r) { return jdr_via_scene(r); }
+static int spec_table(const jd_renderer *r) { return r->spec_tex != 0; }
 
 static const plan_step plan[] = {
     {"the dipole's fit", MODE(FULL), EVERY_FRAME, -1, NULL, jdr_update_fit},
     {"the dipole tail table", MODE(SINGLE) | MODE(DUAL), EVERY_FRAME, -1, NULL, jdr_update_tail},
+    {"the highlight's table", MODE(FULL), EVERY_FRAME, -1, spec_table, jdr_update_spec},
     {"light depth", ALL_MODES, LIGHT_SPACE, JD_PASS_LIGHT_DEPTH, NULL, jdr_pass_light_depth},
     {"full's diffusion", MODE(FULL), LIGHT_SPACE, JD_PASS_DIFFUSION, NULL, jdr_pass_diffusion},
     {"full's soft shadow", MODE(FULL), LIGHT_SPACE, JD_PASS_DIFFUSION, NULL, jdr_pass_soft_shadow},

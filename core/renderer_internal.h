@@ -59,6 +59,7 @@ typedef struct shade_prog {
     GLint albedo_norm, albedo_map, albedo_reach;
     GLint slab, slab_v, slab_scale, slab_scale_v, keep;
     GLint soft_c; /* full: the exponential shadow map's exponent (light.glsl, jd_soft_lit) */
+    GLint spec;   /* full, the levels read from the half-resolution pass: the highlight's table */
 } shade_prog;
 
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */
@@ -70,6 +71,14 @@ typedef struct diff_prog {
 
 #define TAIL_SIZE 256
 #define SLAB_SIZE 256
+/* The highlight's table (pass_screen.c, jdr_update_spec): n.n of the
+ * interpolated normal over [SPEC_NN, 1] across, n.h over [0, 1] up, the
+ * ends at the end texels' centres. SPEC_NN (0.206) makes the coordinates'
+ * constants exact in fp16, as lima holds them: 1.25 n.n - 65/256 and
+ * 255/256 n.h + 1/512. */
+#define SPEC_W 128
+#define SPEC_H 256
+#define SPEC_NN (1.0 - (SPEC_W - 1) / (1.25 * SPEC_W))
 enum { PROJECT_FLOATS = 17 }; /* per vertex of the SH projection's rectangles (pass_sh.c) */
 
 /* GL_EXT_disjoint_timer_query, resolved at start-up when present. */
@@ -117,6 +126,9 @@ struct jd_renderer {
     timer_query tq;
     uint8_t *tail_px;     /* TAIL_SIZE RGBA texels, rebuilt when the material changes */
     float tail_key[9];
+    GLuint spec_tex;      /* full without vertex diffusion: the highlight by (n.n, n.h), SPEC_W x SPEC_H luminance */
+    uint8_t *spec_px;     /* its texels, rebuilt when the shininess changes */
+    float spec_key;
     float fit_key[10];
     jd_diffusion_fit fit;
     int diff_levels;      /* levels whose weights are not all zero */
@@ -213,6 +225,7 @@ typedef struct frame_params {
 int jdr_vertex_stride(const jd_mesh *m);
 jd_result jdr_upload_albedo(jd_renderer *r, const jd_mesh *m, jd_arena *a, jd_error *err);
 GLuint jdr_new_texture(int w, int h, GLint filter);
+GLuint jdr_new_table(int w, int h);
 jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_depth, int linear,
                              const char *what, jd_error *err);
 jd_result jdr_make_cube_target(jd_renderer *r, target *faces, int size, const char *what, jd_error *err);
@@ -256,6 +269,7 @@ void jdr_pass_sh(jd_renderer *r, const jd_scene *s, const frame_params *f);
 /* pass_screen.c */
 void jdr_pass_spread(jd_renderer *r, const jd_scene *s, const frame_params *f);
 void jdr_pass_wide(jd_renderer *r, const jd_scene *s, const frame_params *f);
+void jdr_update_spec(jd_renderer *r, const jd_scene *s, const frame_params *f);
 void jdr_pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f);
 void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f);
 

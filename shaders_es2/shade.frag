@@ -47,6 +47,11 @@ uniform vec3 u_amb_x;        // Rd_total x ambient x exposure
 uniform vec3 u_local_x;      // light colour x Rd's weight on the Gaussians finer than a level texel x exposure
 uniform vec3 u_wide_x;       // light colour x exposure (x 2 where the levels' sum is read halved)
 uniform vec3 u_spec_x;       // light colour x specular x exposure
+#ifdef JD_SPEC_TABLE
+// The highlight, (n.h / |n|)^shininess, by n.n and n.h of the interpolated
+// normal (pass_screen.c, jdr_update_spec).
+uniform sampler2D u_spec;
+#endif
 varying vec2 v_fresnel;      // n.l Ft(l)/c times a thin part's keep, and Ft(v)/c, per vertex (mesh.vert)
 varying vec3 v_half;         // the highlight's half vector, unit length at the vertices (mesh.vert)
 #endif
@@ -196,7 +201,28 @@ void main()
 #else
     vec3 h = normalize(u_light_dir + v);
 #endif
+#ifdef JD_SPEC_TABLE
+    // The highlight read from a table by the two dot products, where the
+    // normal's normalising, the power and the side tests took lima 14 of
+    // full's 33 instruction words (a chain of scalar steps: rsqrt, log2,
+    // exp2 each a word of their own); from the table 27. n.h < 0 reads the
+    // table's first row, 0. The normal turns to the eye only where back
+    // faces are drawn: culled, a visible face's normal faces the eye but
+    // in the silhouette's last pixels (the normals follow the winding,
+    // mesh_load.c). The side test is the vertices' n.l (v_fresnel.x: > 0
+    // where any vertex of the triangle is lit), a word fewer than the
+    // fragment's own.
+    vec3 ns = v_normal;
+#if JD_TWO_SIDED
+    if (dot(ns, v) < 0.0) ns = -ns;
+#endif
+    // Read outside the test: inside it, lima branched round the read.
+    float st = texture2D(u_spec, vec2(dot(v_normal, v_normal) * JD_SPEC_SCALE.x + JD_SPEC_OFFSET.x,
+                                      dot(ns, h) * JD_SPEC_SCALE.y + JD_SPEC_OFFSET.y)).r;
+    float spec = v_fresnel.x > 0.0 ? vis * st : 0.0;
+#else
     float spec = ndl > 0.0 ? vis * pow(max(dot(n, h), 0.0), u_shading.z) : 0.0;
+#endif
 #endif
 #if JD_FULL
 #if JD_VERTEX_DIFFUSION

@@ -9,28 +9,7 @@
 # the levels' light read only at the corners.
 jade=$1
 . "$(dirname "$0")/harness.sh"
-cat > "$tmp/box.obj" <<'OBJ'
-v -1 -1 -1
-v 1 -1 -1
-v 1 1 -1
-v -1 1 -1
-v -1 -1 1
-v 1 -1 1
-v 1 1 1
-v -1 1 1
-f 1 3 2
-f 1 4 3
-f 5 6 7
-f 5 7 8
-f 1 2 6
-f 1 6 5
-f 4 8 7
-f 4 7 3
-f 1 5 8
-f 1 8 4
-f 2 3 7
-f 2 7 6
-OBJ
+box_obj "$tmp/box.obj"
 scene="--mesh $tmp/box.obj --yaw 30 --pitch 25 --light-azimuth 20 --light-elevation 35 --size 96x96"
 # shellcheck disable=SC2086
 "$jade" reference $scene --quiet --out "$tmp/ref.png" --mask "$tmp/mask.png" >/dev/null || bad "jade reference did not run"

@@ -15,3 +15,29 @@ preload_or_skip() {
         exit 77
     fi
 }
+# A box of 12 triangles, two to a face, its corners' normals shared (the
+# file has none: the loader makes them from the faces), into FILE.
+box_obj() {
+    cat > "$1" <<'OBJ'
+v -1 -1 -1
+v 1 -1 -1
+v 1 1 -1
+v -1 1 -1
+v -1 -1 1
+v 1 -1 1
+v 1 1 1
+v -1 1 1
+f 1 3 2
+f 1 4 3
+f 5 6 7
+f 5 7 8
+f 1 2 6
+f 1 6 5
+f 4 8 7
+f 4 7 3
+f 1 5 8
+f 1 8 4
+f 2 3 7
+f 2 7 6
+OBJ
+}

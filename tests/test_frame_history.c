@@ -1,7 +1,8 @@
 /* A frame's picture depends on its scene alone, not on the frames drawn
  * before it: a viewer whose camera comes closer, or whose light or material
  * changes, must draw what a renderer made for that scene would. One
- * renderer draws scene B, then scene A; a fresh one draws A; the two
+ * renderer draws scene B (A from elsewhere, or in another material,
+ * exposure and highlight), then scene A; a fresh one draws A; the two
  * pictures of A must be the same to the bit. The object (a sphere made
  * here) overfills the picture close up, so that every layer's texels at the
  * picture's edges are read; under the generic caps and the mali400 profile
@@ -105,12 +106,16 @@ int main(void)
                 seq[0] = seq[1];
                 seq[0].cam_distance = before[b][0];
                 seq[0].light_azimuth += before[b][1];
-                if (b == nb - 1) { /* the frame before in another material, exposed twice as long */
+                if (b == nb - 1) { /* the frame before in another material, exposed twice as long, its
+                                    * highlight broader (full's highlight table, rebuilt); lit
+                                    * from the camera, the highlight in the picture's middle */
+                    seq[1].light_azimuth = seq[1].cam_azimuth;
                     jd_scene_defaults(&seq[0], jd_material_find("skin1"));
                     seq[0].mode = modes[k];
                     seq[0].cam_distance = seq[1].cam_distance;
                     seq[0].light_azimuth = seq[1].light_azimuth;
                     seq[0].exposure = 2.0f * seq[1].exposure;
+                    seq[0].shininess = 0.25f * seq[1].shininess;
                 }
                 if (!draw(&m, &caps, &seq[1], 1, fresh) || !draw(&m, &caps, seq, 2, after)) continue;
                 int differ = 0, most = 0;
@@ -122,7 +127,7 @@ int main(void)
                     }
                 printf("%s, %s, after a frame %s %.2f, light %+g degrees: %d channels differ (at most %d)\n",
                        profiles[p] ? profiles[p] : "generic", modes[k] == JD_MODE_FULL ? "full" : "dual",
-                       b == nb - 1 ? "in skin1, exposure x 2, at distance" : "at distance", before[b][0], before[b][1],
+                       b == nb - 1 ? "in skin1, exposure x 2, shininess / 4, at distance" : "at distance", before[b][0], before[b][1],
                        differ, most);
                 CHECK(differ == 0, "the picture of a scene does not depend on the frame before");
             }
