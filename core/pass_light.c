@@ -147,10 +147,9 @@ static void diffuse_step(jd_renderer *r, const diff_prog *p, const target *from,
     glUniform2f(p->ref_scale, (float)from->tw / (float)from->w, (float)from->th / (float)from->h);
     glUniform2f(p->uv_scale, (float)from->w / from->tw, (float)from->h / from->th);
     glUniform2f(p->step, sx, sy);
-    if (box) { /* a square of 2 x 2 taps a trip */
+    if (box) /* a square of 2 x 2 taps a trip; the side is the program's JD_BOX_SIDE */
         glUniform1i(p->taps, box > 1 ? box * box / 4 : 1);
-        glUniform1f(p->box, (float)box);
-    } else {
+    else {
         float w[2 * DIFF_TAPS + 1];
         for (int i = 0; i <= 2 * taps; i++) w[i] = expf(-(float)((i - taps) * (i - taps)) / (2.0f * st * st));
         glUniform1i(p->taps, taps);

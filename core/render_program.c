@@ -151,8 +151,9 @@ static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_err
     char def[160];
     p->trips = diffusion_trips(r, first);
     /* The first step gathers light-map texels in squares (JD_BOX). */
-    snprintf(def, sizeof def, "#define JD_PACK_HIGHP %d\n#define JD_TAPS %d\n#define JD_FIRST %d\n#define JD_BOX %d\n",
-             r->highp, DIFF_TAPS, first, first);
+    snprintf(def, sizeof def,
+             "#define JD_PACK_HIGHP %d\n#define JD_TAPS %d\n#define JD_FIRST %d\n#define JD_BOX %d\n#define JD_BOX_SIDE %d\n",
+             r->highp, DIFF_TAPS, first, first, r->d.light_map_size / r->d.diffusion_size);
     if (p->trips) {
         size_t n = strlen(def);
         snprintf(def + n, sizeof def - n, "#define JD_TRIPS %d\n", p->trips);
@@ -167,7 +168,6 @@ static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_err
     p->w = glGetUniformLocation(p->id, "u_w");
     p->uv_scale = glGetUniformLocation(p->id, "u_uv_scale");
     p->near = glGetUniformLocation(p->id, "u_near");
-    p->box = glGetUniformLocation(p->id, "u_box");
     return JD_OK;
 }
 

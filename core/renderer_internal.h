@@ -65,7 +65,7 @@ typedef struct shade_prog {
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */
 typedef struct diff_prog {
     GLuint id;
-    GLint src, ref, ref_scale, step, taps, w, uv_scale, near, box;
+    GLint src, ref, ref_scale, step, taps, w, uv_scale, near;
     int trips; /* built with this constant trip count (JD_TRIPS), or 0: the loop's count is a uniform */
 } diff_prog;
 

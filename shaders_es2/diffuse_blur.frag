@@ -21,7 +21,8 @@ uniform int u_taps;         // taps on each side of the centre for this level, 1
 uniform float u_w[2 * JD_TAPS + 1]; // the Gaussian's weights, tap 0 (-u_taps) to 2 u_taps
 uniform float u_near;       // light-depth units that still count as this texel's surface
 #if JD_BOX
-uniform float u_box;        // light-map texels a side of the square one output texel gathers
+// JD_BOX_SIDE: light-map texels a side of the square one output texel
+// gathers (a power of two, or 1), fixed when the renderer is made.
 #endif
 varying vec2 v_uv;
 
@@ -107,16 +108,18 @@ void main()
 #endif
 #if JD_BOX
         // The first level's first step: every light-map texel under this
-        // output texel (u_box a side, a power of two) with the same weight,
+        // output texel (JD_BOX_SIDE a side, a power of two) with the same weight,
         // at a quarter of the fragments a first pass along one axis writes;
         // a square of 2 x 2 a trip, u_taps trips (a side of 1: one tap, the
         // others weigh 0). One texel a trip, the loop's own words came 16
         // times; two a trip, lima's 8 trips at the default sizes cost 536
         // instruction words a fragment, the four in vector lanes 326 (with
-        // 6 spills, which the count holds).
-        float hb = 0.5 * u_box, fi = float(i);
-        vec2 o = 2.0 * vec2(mod(fi, hb), floor(fi / hb)) - 0.5 * (u_box - 1.0);
-        square(v_uv + o * u_step, step(1.5, u_box), zr, acc, wsum);
+        // 6 spills, which the count holds); the side a constant, 310 (no
+        // reciprocal of it a trip).
+        const float hb = 0.5 * float(JD_BOX_SIDE);
+        float fi = float(i), row = floor(fi * (1.0 / hb));
+        vec2 o = 2.0 * vec2(fi - hb * row, row) - 0.5 * (float(JD_BOX_SIDE) - 1.0);
+        square(v_uv + o * u_step, JD_BOX_SIDE > 1 ? 1.0 : 0.0, zr, acc, wsum);
 #else
         tap(v_uv + (float(i) - float(u_taps)) * u_step, u_w[i], zr, acc, wsum);
 #endif
