@@ -96,7 +96,7 @@ static void reload(jd_session *s, jd_options *o, jd_scene *sc, int argc, char **
 static int capture(jd_session *s, const char *path)
 {
     int w, h;
-    jd_platform_size(s->platform, &w, &h);
+    jd_platform_display_size(s->platform, &w, &h);
     uint8_t *px = malloc((size_t)w * (size_t)h * 4);
     jd_error err = {0};
     jd_result r = px ? jd_platform_capture(s->platform, px, &err) : jd_fail(&err, JD_ERR_BUDGET, "no memory for the capture");
@@ -105,6 +105,34 @@ static int capture(jd_session *s, const char *path)
     else printf("kiosk: what the display scans out (%dx%d) written to %s\n", w, h, path);
     free(px);
     return r != JD_OK;
+}
+
+/* Where the device's tier draws the picture smaller than the display, the
+ * display engine enlarges it on its way out if it can (the plane's
+ * scaler, drm --atomic): the GL pass that enlarges it goes, and so does
+ * writing the full-size picture to memory every frame (Mali-400 MP2 at
+ * 1080p: 1.6 ms of its 8.9, docs/frame-cost.md). The renderer then draws
+ * at the smaller size, which its tier leaves as it is. 1 after saying why
+ * it failed. */
+static int enlarge_on_display(jd_session *s, const jd_options *o)
+{
+    jd_renderer_info info;
+    jd_renderer_get_info(s->renderer, &info);
+    int dw, dh, w = info.render_width, h = info.render_height;
+    jd_platform_display_size(s->platform, &dw, &dh);
+    if (o->gpu_enlarge || o->rdesc.render_scale != 0.0f || !info.tier || (w >= dw && h >= dh)) return 0;
+    if (!jd_platform_scale_out(s->platform, w, h)) {
+        printf("kiosk: the GPU enlarges %dx%d to %dx%d (%s)\n", w, h, dw, dh,
+               o->atomic ? "the display engine's scaler refused it" : "--atomic lets the display engine do it where it can");
+        return 0;
+    }
+    jd_error err = {0};
+    if (jd_renderer_resize(s->renderer, w, h, &err)) {
+        fprintf(stderr, "jade kiosk: %s\n", err.msg);
+        return 1;
+    }
+    printf("kiosk: the display engine enlarges %dx%d to %dx%d (the plane's scaler); no GL pass does\n", w, h, dw, dh);
+    return 0;
 }
 
 static double kiosk_times[KIOSK_SAMPLES], kiosk_sorted[KIOSK_SAMPLES];
@@ -134,6 +162,10 @@ int jd_cmd_kiosk(int argc, char **argv)
     jd_error err = {0};
     double *times = kiosk_times, *sorted = kiosk_sorted;
     fprintf(stderr, "%s\n%s\n", jd_platform_describe(s.platform), jd_antialias_describe(s.renderer));
+    if (enlarge_on_display(&s, &o)) {
+        jd_session_close(&s);
+        return 1;
+    }
     jd_scene sc = o.scene;
     double t_start = jd_clock_ms(), t_prev = t_start, t_log = t_start, t_input = -1e300, t_ease = t_start;
     /* The user's turn of the camera, eased back to the scene's own once
@@ -160,10 +192,14 @@ int jd_cmd_kiosk(int argc, char **argv)
                 jd_renderer_get_info(s.renderer, &info);
                 printf("kiosk: the display is now %dx%d%s%s\n", ev.w, ev.h, info.tier ? "; " : "",
                        info.tier ? info.tier : "");
+                if (enlarge_on_display(&s, &o)) {
+                    rc = 1;
+                    quit = 1;
+                }
             }
             else if (ev.type == JD_EVENT_DRAG) {
-                int w, h;
-                jd_platform_size(s.platform, &w, &h);
+                int w, h; /* the drag is in the display's pixels, whatever size the picture is drawn at */
+                jd_platform_display_size(s.platform, &w, &h);
                 /* A drag across the whole screen turns the object half round;
                  * on a panel mounted turned (--rotate, counter-clockwise),
                  * the drag is turned back into the picture's directions. */

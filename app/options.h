@@ -27,6 +27,7 @@ typedef struct jd_options {
     const char *drm_device, *connector, *display_mode;
     int rotation;
     int atomic;
+    int gpu_enlarge;   /* kiosk: no display-engine scaling of the tier's picture */
     int wait_display;
     int width, height;
     int frames;

@@ -216,8 +216,9 @@ static int make_renderer(jd_session *s, jd_options *o, const char *cmd)
     rd.mesh = &s->mesh;
     rd.caps = &s->caps;
     rd.target_fbo = jd_platform_framebuffer(s->platform);
-    rd.width = o->width;
-    rd.height = o->height;
+    /* The drawable as it is now: a display that changed mode, or a picture
+     * the display engine enlarges, since the session opened. */
+    jd_platform_size(s->platform, &rd.width, &rd.height);
     jd_platform_max_size(s->platform, &rd.max_width, &rd.max_height);
     rd.rotation = o->rotation;
     rd.get_proc = jd_platform_gl_proc;

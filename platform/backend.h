@@ -17,8 +17,12 @@ typedef struct jd_platform_ops {
     void (*stats)(const void *impl, jd_present_stats *st);
     const char *(*describe)(const void *impl);
     void (*close)(void *impl);
-    /* What the display scans out, as top-down RGBA rows (optional). */
+    /* What the display scans out, as top-down RGBA rows of display_size (optional). */
     jd_result (*capture)(void *impl, uint8_t *dst, jd_error *err);
+    /* The display engine enlarging a w x h drawable (optional: 0). */
+    int (*scale_out)(void *impl, int w, int h);
+    /* The size the display shows (optional: size). */
+    void (*display_size)(const void *impl, int *w, int *h);
 } jd_platform_ops;
 
 extern const jd_platform_ops jd_headless_ops;

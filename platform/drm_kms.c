@@ -46,6 +46,9 @@ typedef struct drm_platform {
     struct gbm_device *gbm;
     struct gbm_surface *gbm_surface;
     uint32_t format;
+    /* The drawable where the plane's scaler enlarges it to the mode
+     * (jd_platform_scale_out, --atomic only); 0 x 0: the mode's size. */
+    int out_w, out_h;
     EGLDisplay edpy;
     EGLContext ctx;
     EGLSurface surf;
@@ -312,12 +315,24 @@ static jd_result setup_atomic(drm_platform *p, jd_error *err)
     return JD_OK;
 }
 
+/* What the GPU draws: the mode's size, or smaller where the plane's
+ * scaler enlarges it. */
+static void surface_size(const drm_platform *p, int *w, int *h)
+{
+    *w = p->out_w ? p->out_w : p->mode.hdisplay;
+    *h = p->out_h ? p->out_h : p->mode.vdisplay;
+}
+
 /* The first commit sets the mode (ALLOW_MODESET); later ones only move
- * the plane to the new framebuffer and ask for the flip event. in_fence:
+ * the plane to the new framebuffer and ask for the flip event. modeset 2:
+ * the first commit only tried (TEST_ONLY). The plane shows the whole
+ * framebuffer over the whole mode: enlarged where it is smaller. in_fence:
  * the GPU's fence for fb, or -1; out_fence: where the kernel puts the
  * flip's fence, or NULL. */
 static int atomic_commit(drm_platform *p, uint32_t fb, int modeset, int in_fence, int *out_fence)
 {
+    int sw, sh;
+    surface_size(p, &sw, &sh);
     drmModeAtomicReq *req = drmModeAtomicAlloc();
     if (!req) return -1;
     if (modeset) {
@@ -327,8 +342,8 @@ static int atomic_commit(drm_platform *p, uint32_t fb, int modeset, int in_fence
         drmModeAtomicAddProperty(req, p->plane_id, p->p_plane_crtc, p->crtc_id);
         drmModeAtomicAddProperty(req, p->plane_id, p->p_src_x, 0);
         drmModeAtomicAddProperty(req, p->plane_id, p->p_src_y, 0);
-        drmModeAtomicAddProperty(req, p->plane_id, p->p_src_w, (uint64_t)p->mode.hdisplay << 16);
-        drmModeAtomicAddProperty(req, p->plane_id, p->p_src_h, (uint64_t)p->mode.vdisplay << 16);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_src_w, (uint64_t)sw << 16);
+        drmModeAtomicAddProperty(req, p->plane_id, p->p_src_h, (uint64_t)sh << 16);
         drmModeAtomicAddProperty(req, p->plane_id, p->p_crtc_x, 0);
         drmModeAtomicAddProperty(req, p->plane_id, p->p_crtc_y, 0);
         drmModeAtomicAddProperty(req, p->plane_id, p->p_crtc_w, p->mode.hdisplay);
@@ -337,7 +352,9 @@ static int atomic_commit(drm_platform *p, uint32_t fb, int modeset, int in_fence
     drmModeAtomicAddProperty(req, p->plane_id, p->p_fb, fb);
     if (in_fence >= 0) drmModeAtomicAddProperty(req, p->plane_id, p->p_in_fence, (uint64_t)in_fence);
     if (out_fence) drmModeAtomicAddProperty(req, p->crtc_id, p->p_out_fence, (uint64_t)(uintptr_t)out_fence);
-    uint32_t flags = modeset ? DRM_MODE_ATOMIC_ALLOW_MODESET : DRM_MODE_ATOMIC_NONBLOCK | DRM_MODE_PAGE_FLIP_EVENT;
+    uint32_t flags = modeset == 2 ? DRM_MODE_ATOMIC_ALLOW_MODESET | DRM_MODE_ATOMIC_TEST_ONLY
+                     : modeset   ? DRM_MODE_ATOMIC_ALLOW_MODESET
+                                 : DRM_MODE_ATOMIC_NONBLOCK | DRM_MODE_PAGE_FLIP_EVENT;
     int rc = drmModeAtomicCommit(p->fd, req, flags, p);
     drmModeAtomicFree(req);
     return rc;
@@ -356,22 +373,22 @@ static void plane_modifiers(drm_platform *p, uint32_t format)
     drmModeFreePropertyBlob(blob);
 }
 
-/* The scan-out surface at the mode's size: with the plane's modifiers
+/* The scan-out surface at surface_size: with the plane's modifiers
  * where it names some (the driver then picks the best layout it can scan
  * out), else with none (linear, or the driver's implicit choice). */
 static struct gbm_surface *make_gbm_surface(drm_platform *p, uint32_t format)
 {
     struct gbm_surface *s = NULL;
+    int w, h;
+    surface_size(p, &w, &h);
     plane_modifiers(p, format);
     p->surface_modifiers = 0;
     if (p->num_modifiers > 0) {
-        s = gbm_surface_create_with_modifiers(p->gbm, p->mode.hdisplay, p->mode.vdisplay, format, p->modifiers,
+        s = gbm_surface_create_with_modifiers(p->gbm, (uint32_t)w, (uint32_t)h, format, p->modifiers,
                                               (unsigned)p->num_modifiers);
         p->surface_modifiers = s != NULL;
     }
-    if (!s)
-        s = gbm_surface_create(p->gbm, p->mode.hdisplay, p->mode.vdisplay, format,
-                               GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+    if (!s) s = gbm_surface_create(p->gbm, (uint32_t)w, (uint32_t)h, format, GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
     return s;
 }
 
@@ -416,7 +433,7 @@ static int card_changed(drm_platform *p)
     return hit;
 }
 
-/* A new GBM surface and EGL window surface at the mode's size, the context
+/* A new GBM surface and EGL window surface at surface_size, the context
  * kept. The old buffers go first: the one on screen with them (the modeset
  * that follows puts a new one there). */
 static int remake_surface(drm_platform *p)
@@ -432,7 +449,9 @@ static int remake_surface(drm_platform *p)
     if (p->gbm_surface)
         p->surf = eglCreateWindowSurface(p->edpy, p->cfg, (EGLNativeWindowType)p->gbm_surface, no_attribs);
     if (!p->gbm_surface || p->surf == EGL_NO_SURFACE || !eglMakeCurrent(p->edpy, p->surf, p->surf, p->ctx)) {
-        snprintf(p->failed, sizeof p->failed, "%s: no surface for the new mode %dx%d (0x%x)", p->device,
+        int w, h;
+        surface_size(p, &w, &h);
+        snprintf(p->failed, sizeof p->failed, "%s: no %dx%d surface for the mode %dx%d (0x%x)", p->device, w, h,
                  p->mode.hdisplay, p->mode.vdisplay, eglGetError());
         return 0;
     }
@@ -463,6 +482,9 @@ static int follow_display(drm_platform *p, jd_event *ev)
     if (f == JD_DRM_LOST) p->lost = 1;
     if (f == JD_DRM_MODESET) {
         resized = c->modes[m].hdisplay != p->mode.hdisplay || c->modes[m].vdisplay != p->mode.vdisplay;
+        /* Another size: the drawable takes the mode's, unscaled; the
+         * program may ask for the scaler again (JD_EVENT_RESIZE). */
+        if (resized) p->out_w = p->out_h = 0;
         p->mode = c->modes[m];
         p->lost = 0;
         p->modeset_done = 0; /* the next present sets the mode */
@@ -735,11 +757,47 @@ static jd_result drm_present(void *impl, jd_error *err)
     return JD_OK;
 }
 
-static void drm_size(const void *impl, int *w, int *h)
+static void drm_size(const void *impl, int *w, int *h) { surface_size(impl, w, h); }
+
+static void drm_display_size(const void *impl, int *w, int *h)
 {
     const drm_platform *p = impl;
     *w = p->mode.hdisplay;
     *h = p->mode.vdisplay;
+}
+
+/* The plane's scaler, asked with a test commit of a buffer of w x h over
+ * the mode (a driver without a scaler, or with limits this passes, says
+ * no: the drawable stays as it was); taken, the surface is made again at
+ * w x h and the next frame sets the mode with it. */
+static int drm_scale_out(void *impl, int w, int h)
+{
+    drm_platform *p = impl;
+    int mw = p->mode.hdisplay, mh = p->mode.vdisplay, ow = p->out_w, oh = p->out_h;
+    if (w == mw && h == mh) {
+        if (!ow) return 1;
+        p->out_w = p->out_h = 0;
+    } else {
+        if (!p->atomic || p->lost || w < 1 || h < 1 || w > mw || h > mh) return 0;
+        struct gbm_bo *bo = gbm_bo_create(p->gbm, (uint32_t)w, (uint32_t)h, p->format, GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+        uint32_t fb = bo ? fb_for(p, bo) : 0;
+        p->out_w = w, p->out_h = h;
+        int ok = fb && atomic_commit(p, fb, 2, -1, NULL) == 0;
+        if (bo) gbm_bo_destroy(bo); /* its framebuffer with it */
+        if (!ok) {
+            p->out_w = ow, p->out_h = oh;
+            return 0;
+        }
+    }
+    p->modeset_done = 0;
+    if (remake_surface(p)) {
+        p->failed[0] = 0;
+        return 1;
+    }
+    /* The old size back, where a surface can still be had. */
+    p->out_w = ow, p->out_h = oh;
+    if (remake_surface(p)) p->failed[0] = 0;
+    return 0;
 }
 
 /* The first mode's size: the renderer's budget is taken for it once, and a
@@ -944,5 +1002,5 @@ static void drm_close(void *impl)
 
 const jd_platform_ops jd_drm_ops = {
     "drm", drm_probe, drm_open, drm_size, drm_max_size, drm_framebuffer, drm_present, drm_poll, drm_stats, drm_describe, drm_close,
-    drm_capture,
+    drm_capture, drm_scale_out, drm_display_size,
 };

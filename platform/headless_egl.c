@@ -208,5 +208,6 @@ static void headless_close(void *impl)
 
 const jd_platform_ops jd_headless_ops = {
     "headless", NULL, headless_open, headless_size, headless_size, headless_framebuffer, headless_present,
-    headless_poll, headless_stats, headless_describe, headless_close, NULL /* no display to read back */
+    headless_poll, headless_stats, headless_describe, headless_close, NULL /* no display to read back */,
+    NULL /* nothing to scan out */, NULL,
 };

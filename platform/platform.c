@@ -62,6 +62,12 @@ jd_result jd_platform_open(const jd_platform_desc *desc, jd_platform **out, jd_e
 
 void jd_platform_size(const jd_platform *p, int *w, int *h) { p->ops->size(p->impl, w, h); }
 void jd_platform_max_size(const jd_platform *p, int *w, int *h) { p->ops->max_size(p->impl, w, h); }
+int jd_platform_scale_out(jd_platform *p, int w, int h) { return p->ops->scale_out ? p->ops->scale_out(p->impl, w, h) : 0; }
+void jd_platform_display_size(const jd_platform *p, int *w, int *h)
+{
+    if (p->ops->display_size) p->ops->display_size(p->impl, w, h);
+    else p->ops->size(p->impl, w, h);
+}
 unsigned jd_platform_framebuffer(const jd_platform *p) { return p->ops->framebuffer(p->impl); }
 jd_result jd_platform_present(jd_platform *p, jd_error *err) { return p->ops->present(p->impl, err); }
 int jd_platform_poll(jd_platform *p, jd_event *ev)

@@ -62,9 +62,18 @@ unsigned jd_platform_framebuffer(const jd_platform *p);
 jd_result jd_platform_present(jd_platform *p, jd_error *err);
 /* Top-down RGBA8 rows of the frame just drawn (call before present). */
 jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err);
+/* Frames drawn at w x h and enlarged by the display engine on their way
+ * out (drm --atomic: the primary plane's scaler, where the driver takes it,
+ * asked with a test commit), not by a GL pass: the drawable becomes w x h,
+ * the display keeps its mode. 1 if taken, 0 if not (nothing changed).
+ * The display's own size takes the scaling off again. */
+int jd_platform_scale_out(jd_platform *p, int w, int h);
+/* The size the display shows: jd_platform_size, or what the display
+ * engine enlarges it to (jd_platform_scale_out). */
+void jd_platform_display_size(const jd_platform *p, int *w, int *h);
 /* What the display controller scans out now, read back by the display
  * hardware itself (drm: a writeback connector on the CRTC; the others
- * have none and say so): top-down RGBA8 rows of jd_platform_size. For
+ * have none and say so): top-down RGBA8 rows of jd_platform_display_size. For
  * checking a kiosk's screen from afar, not for every frame: on most
  * drivers it takes a modeset (the connector joins the CRTC) and a wait. */
 jd_result jd_platform_capture(jd_platform *p, uint8_t *dst, jd_error *err);

@@ -165,35 +165,76 @@ if have 700 capture; then
     else bad "writeback capture: $(cat "$out/capture")"; fi
     restored capture
 fi
+# The display engine enlarging the picture: under the mali400 profile the
+# tier draws 1280x720 at 960x540, and with --atomic the kiosk asks the
+# plane's scaler to enlarge it (vkms scales here, nearest pixel:
+# tools/kms/vkms-plane-scaling.patch), not a GL pass. What the writeback
+# reads back is the whole picture at the mode's size, as jade's render
+# enlarges it (bilinear: the outline's pixels differ). Without --atomic the
+# GPU enlarges it, and says why.
+tier="--display-mode 1280x720 --profile mali400 --decode-timeout-ms 60000 --mode none --antialias off --mesh $cube"
+if have 500 scale; then
+    if kiosk scale 300 $tier --frames 3 --atomic --light-speed 0 --screenshot "$out/scaled.png" &&
+        grep -q "^kiosk: the display engine enlarges 960x540 to 1280x720" "$out/scale"; then
+        ok "the plane's scaler enlarges the tier's picture: $(grep '^kiosk: the display' "$out/scale"); $(grep '^kiosk: [0-9]* frames' "$out/scale")"
+        if bounded scaled_render 200 "$jade" render --size 1280x720 --profile mali400 --decode-timeout-ms 60000 --mode none --antialias off \
+            --mesh "$cube" --out "$out/scaled_render.png" &&
+            "$imgcmp" "$out/scaled.png" "$out/scaled_render.png" --max-rmse 4 --max-bad-frac 0.01 > "$out/scmp" 2>&1 &&
+            "$imgcmp" --frame "$out/scaled.png" 0.3 >> "$out/scmp" 2>&1; then
+            ok "the scanned-out picture is the render, enlarged: $(cat "$out/scmp" | tr '\n' ' ')"
+        else bad "the enlarged scan-out differs from the render: $(cat "$out/scmp" "$out/scaled_render" 2>/dev/null | tr '\n' ' ')"; fi
+    else bad "plane scaling: $(cat "$out/scale")"; fi
+    restored scale
+    if kiosk scale_gpu 150 $tier --frames 2 && grep -q "^kiosk: the GPU enlarges 960x540 to 1280x720 (--atomic" "$out/scale_gpu"; then
+        ok "without --atomic the GPU enlarges it: $(grep '^kiosk: the GPU' "$out/scale_gpu")"
+    else bad "legacy with the tier: $(cat "$out/scale_gpu")"; fi
+fi
 # Hotplug: the display unplugged and plugged back in. vkms makes no hotplug
 # of its own, so the connector is forced off and on through debugfs and the
 # kernel's uevent is asked for by hand, as a real hotplug would send it.
+# hotplug NAME ARGS...: the kiosk with ARGS through it.
 force=$(ls -d /sys/kernel/debug/dri/0/Virtual-1 2>/dev/null)/force
-if [ ! -w "$force" ]; then
-    echo "no debugfs force file for Virtual-1: hotplug is not tried" | tee -a "$res"
-elif have 450 hotplug; then
-    "$jade" kiosk --drm-device /dev/dri/card0 $light > "$out/hotplug" 2>&1 &
+hotplug() {
+    h=$1
+    shift
+    "$jade" kiosk --drm-device /dev/dri/card0 "$@" > "$out/$h" 2>&1 &
     pid=$!
-    wait_for "$out/hotplug" "anti-aliasing" 120
+    wait_for "$out/$h" "anti-aliasing" 120
     sleep 3
     echo off > "$force" && echo change > /sys/class/drm/card0/uevent
     # Under TCG on a loaded host a frame can take 25 s, and uevents are read
     # between frames.
-    if wait_for "$out/hotplug" "the display went away" 90 && sleep 2 && kill -0 "$pid"; then
-        ok "unplugged: the kiosk waits: $(grep 'went away' "$out/hotplug")"
-    else bad "unplug: $(cat "$out/hotplug")"; fi
+    if wait_for "$out/$h" "the display went away" 90 && sleep 2 && kill -0 "$pid"; then
+        ok "$h: unplugged: the kiosk waits: $(grep 'went away' "$out/$h")"
+    else bad "$h: unplug: $(cat "$out/$h")"; fi
     echo on > "$force" && echo change > /sys/class/drm/card0/uevent
-    if wait_for "$out/hotplug" "the display is back" 90 && wait_for "$out/hotplug" "set again" 90; then
-        ok "plugged back: $(grep -e 'is back' -e 'set again' "$out/hotplug" | tr '\n' ' ')"
-    else bad "plug back: $(cat "$out/hotplug")"; fi
+    if wait_for "$out/$h" "the display is back" 90 && wait_for "$out/$h" "set again" 90; then
+        ok "$h: plugged back: $(grep -e 'is back' -e 'set again' "$out/$h" | tr '\n' ' ')"
+    else bad "$h: plug back: $(cat "$out/$h")"; fi
+    # The plane as the kernel has it now (its source and its place on the CRTC).
+    sed -n '/^plane\[/,/^crtc\[/p' "$state" | grep -e 'src-pos=' -e 'crtc-pos=' | head -2 | tr -d '\t' | tr '\n' ' ' > "$out/${h}_plane"
     printf unspecified > "$force" # 11 bytes: the kernel's buffer has no room for a newline too
-    stop "$pid" hotplug
+    stop "$pid" "$h"
     rc=$?
-    line=$(grep "^kiosk: [0-9]* frames" "$out/hotplug")
+    line=$(grep "^kiosk: [0-9]* frames" "$out/$h")
     if [ "$rc" -eq 0 ] && echo "$line" | grep -q "modesets 2"; then
-        ok "a frame shown again by a second modeset, exit 0 at SIGTERM: $line"
-    else bad "after the hotplug: exit $rc: $(cat "$out/hotplug")"; fi
-    restored hotplug
+        ok "$h: a frame shown again by a second modeset, exit 0 at SIGTERM: $line"
+    else bad "$h: after the hotplug: exit $rc: $(cat "$out/$h")"; fi
+    restored "$h"
+}
+if [ ! -w "$force" ]; then
+    echo "no debugfs force file for Virtual-1: hotplug is not tried" | tee -a "$res"
+else
+    if have 450 hotplug; then hotplug hotplug $light; fi
+    # The same with the plane's scaler enlarging the picture: the display
+    # comes back with the same mode, and the plane still enlarges 960x540.
+    if have 450 hotplug_scaled; then
+        hotplug hotplug_scaled $tier --atomic --light-speed 0
+        if grep -q "crtc-pos=1280x720+0+0" "$out/hotplug_scaled_plane" &&
+            grep -q "src-pos=960.000000x540.000000+0.000000+0.000000" "$out/hotplug_scaled_plane"; then
+            ok "hotplug_scaled: after the second modeset the plane still enlarges: $(cat "$out/hotplug_scaled_plane")"
+        else bad "hotplug_scaled: the plane after the hotplug: $(cat "$out/hotplug_scaled_plane")"; fi
+    fi
 fi
 # A touch screen: udev tags it, libinput finds it, a swipe turns the object.
 if [ ! -e /dev/uinput ] || [ ! -x /lib/systemd/systemd-udevd ]; then

@@ -100,6 +100,15 @@ int main(int argc, char **argv)
     jd_gl_caps caps;
     jd_gl_caps_query(&caps, &err);
     printf("GL: %s | %s | %s\n", caps.renderer, caps.version, jd_platform_describe(p));
+    {
+        /* No display engine to enlarge a headless picture: the size stays. */
+        int w = 0, h = 0;
+        CHECK(!jd_platform_scale_out(p, 32, 32), "headless: no display engine's scaler");
+        jd_platform_display_size(p, &w, &h);
+        CHECK(w == 64 && h == 64, "headless: the display's size is the drawable's (%dx%d)", w, h);
+        jd_platform_size(p, &w, &h);
+        CHECK(w == 64 && h == 64, "headless: the drawable unchanged (%dx%d)", w, h);
+    }
 
     size_t mark = jd_arena_mark(&a);
     if (fp16_only) {

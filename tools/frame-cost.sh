@@ -1,7 +1,10 @@
 #!/bin/sh
 # The frame-cost model's table: jade's defaults (full mode, marble, the
 # default asset) on every board of `jade info --boards`, for the default
-# scene and a close-up (--distance 1.6), at 1280x720 and 1920x1080.
+# scene and a close-up (--distance 1.6), at 1280x720 and 1920x1080, and at
+# 960x540: the frame of a board whose tier draws 1080p at that size when
+# the display engine enlarges it (the kiosk with --atomic, where the
+# plane's scaler takes it), with no GL pass at 1080p.
 #
 #   tools/frame-cost.sh [JADE] [--check EXPECTED | --update EXPECTED]
 #
@@ -33,7 +36,7 @@ for b in $boards; do
     for scene in default closeup; do
         extra=""
         [ "$scene" = closeup ] && extra="--distance 1.6"
-        for size in 1280x720 1920x1080; do
+        for size in 960x540 1280x720 1920x1080; do
             # shellcheck disable=SC2086
             if ! "$jade" bench --device "$b" --size "$size" --frames 1 --mode full $extra >"$tmp/json" 2>"$tmp/err"; then
                 echo "frame-cost: jade bench --device $b --size $size $extra failed: $(head -c 300 "$tmp/err")" >&2

@@ -9,9 +9,11 @@
 # Needs root to install what is missing (qemu-system-x86, linux-image-amd64,
 # linux-headers-amd64, linux-source-6.1, busybox-static, systemd); exits 77
 # with the reason where they cannot be had. The module, the kernel and the
-# initramfs are kept in build-kms/ for the next run. vkms gets one fix
-# (tools/kms/vkms-writeback-clones.patch) so that its writeback connector
-# can read back what the kiosk shows, compared with IMGCMP (tests/imgcmp).
+# initramfs are kept in build-kms/ for the next run. vkms gets two changes
+# (tools/kms/*.patch): a fix so that its writeback connector can read back
+# what the kiosk shows, compared with IMGCMP (tests/imgcmp), and plane
+# scaling, which no driver that runs in qemu has, for the kiosk's use of a
+# display engine's scaler.
 set -eu
 here=$(cd "$(dirname "$0")/.." && pwd)
 jade=$(readlink -f "${1:-$here/build/jade}")
@@ -43,15 +45,17 @@ for v in $(ls /boot | sed -n 's/^vmlinuz-//p' | sort -V); do
     [ -d "/usr/src/linux-headers-$v" ] && [ -d "/lib/modules/$v" ] && kver=$v
 done
 [ -n "$kver" ] || { echo "SKIP: no /boot/vmlinuz-* with its linux-headers"; exit 77; }
-# vkms, out of tree, against that kernel, with its writeback fix.
-ko=$work/vkms-$kver-wb.ko
+# vkms, out of tree, against that kernel, with its writeback fix and plane scaling.
+ko=$work/vkms-$kver-wb-scale.ko
 if [ ! -f "$ko" ]; then
     src=$(ls /usr/src/linux-source-*.tar.xz | sort -V | tail -1)
     rm -rf "$work/vkms-src"
     mkdir -p "$work/vkms-src"
     tar -xJf "$src" -C "$work/vkms-src" --strip-components=5 --wildcards '*/drivers/gpu/drm/vkms/*'
-    patch -s -p5 -d "$work/vkms-src" < "$here/tools/kms/vkms-writeback-clones.patch" ||
-        { echo "kms-test: the vkms writeback fix does not apply to $src"; exit 1; }
+    for fix in vkms-writeback-clones vkms-plane-scaling; do
+        patch -s -p5 -d "$work/vkms-src" < "$here/tools/kms/$fix.patch" ||
+            { echo "kms-test: tools/kms/$fix.patch does not apply to $src"; exit 1; }
+    done
     make -C "/usr/src/linux-headers-$kver" M="$work/vkms-src" CONFIG_DRM_VKMS=m modules > "$work/vkms-build.log" 2>&1 ||
         { echo "kms-test: vkms does not build against $kver: $(tail -3 "$work/vkms-build.log")"; exit 1; }
     cp "$work/vkms-src/vkms.ko" "$ko"
