@@ -66,13 +66,14 @@ static void reload(jd_session *s, jd_options *o, jd_scene *sc, int argc, char **
     else if (!same_str(n.connector, o->connector)) later = "connector";
     else if (!same_str(n.display_mode, o->display_mode)) later = "display-mode";
     else if (n.atomic != o->atomic) later = "atomic";
+    else if (n.kms != o->kms) later = "kms";
     else if (n.rotation != o->rotation) later = "rotate";
     else if (!same_str(n.profile, o->profile)) later = "profile";
     else if (memcmp(&n.rdesc, &o->rdesc, sizeof n.rdesc)) later = "a renderer option";
     if (later) fprintf(stderr, "jade kiosk: SIGHUP: %s changed; that takes effect at the next start\n", later);
     /* The display stays as opened and the renderer as set up. (The new
      * strings are kept: the old ones live in the text about to be reused.) */
-    n.atomic = o->atomic, n.rotation = o->rotation, n.rdesc = o->rdesc, n.fullscreen = o->fullscreen;
+    n.atomic = o->atomic, n.kms = o->kms, n.rotation = o->rotation, n.rdesc = o->rdesc, n.fullscreen = o->fullscreen;
     n.width = o->width, n.height = o->height;
     int mesh_changed = !same_str(n.mesh, o->mesh) || memcmp(&n.load, &o->load, sizeof n.load);
     *cur = !*cur;
@@ -109,7 +110,7 @@ static int capture(jd_session *s, const char *path)
 
 /* Where the device's tier draws the picture smaller than the display, the
  * display engine enlarges it on its way out if it can (the plane's
- * scaler, drm --atomic): the GL pass that enlarges it goes, and so does
+ * scaler, drm with atomic modesetting): the GL pass that enlarges it goes, and so does
  * writing the full-size picture to memory every frame (Mali-400 MP2 at
  * 1080p: 1.6 ms of its 8.9, docs/frame-cost.md). The renderer then draws
  * at the smaller size, which its tier leaves as it is. 1 after saying why
@@ -122,8 +123,12 @@ static int enlarge_on_display(jd_session *s, const jd_options *o)
     jd_platform_display_size(s->platform, &dw, &dh);
     if (o->gpu_enlarge || o->rdesc.render_scale != 0.0f || !info.tier || (w >= dw && h >= dh)) return 0;
     if (!jd_platform_scale_out(s->platform, w, h)) {
+        jd_present_stats ps;
+        jd_platform_present_stats(s->platform, &ps);
         printf("kiosk: the GPU enlarges %dx%d to %dx%d (%s)\n", w, h, dw, dh,
-               o->atomic ? "the display engine's scaler refused it" : "--atomic lets the display engine do it where it can");
+               strcmp(o->platform, "drm") ? "only drm asks a display engine's scaler"
+               : ps.atomic                ? "the display engine's scaler refused it"
+                                          : "legacy modesetting cannot ask the display engine's scaler");
         return 0;
     }
     jd_error err = {0};

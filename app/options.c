@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef enum { T_STR, T_PATH, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION, T_ANTIALIAS, T_PROBE } opt_type;
+typedef enum { T_STR, T_PATH, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION, T_ANTIALIAS, T_PROBE, T_KMS } opt_type;
 
 typedef struct opt {
     const char *name;
@@ -57,8 +57,10 @@ static const opt table[] = {
     {"--config", T_PATH, OFF(config), 0, 0, K, "FILE       options as 'key = value' lines (keys as these options, without --); re-read on SIGHUP"},
     {"--idle", T_FLOAT, OFF(idle_s), 0, 86400, K, "S          after S seconds without touch or mouse the camera returns to its place [30]"},
     {"--wait-display", T_FLAG, OFF(wait_display), 0, 0, K, "           no display yet (or held by another): wait for one, retrying every second"},
-    {"--atomic", T_FLAG, OFF(atomic), 0, 0, K, "           atomic modesetting (where the driver has it); the display engine enlarges the tier's smaller picture where its scaler can"},
-    {"--gpu-enlarge", T_FLAG, OFF(gpu_enlarge), 0, 0, K, "           the GPU enlarges the tier's smaller picture even where the display engine could (--atomic)"},
+    {"--kms", T_KMS, OFF(kms), 0, 0, K,
+     "API        auto|atomic|legacy: atomic modesetting where the driver has it (the display engine may then enlarge the tier's smaller picture), else legacy [auto]"},
+    {"--atomic", T_FLAG, OFF(atomic), 0, 0, K, "           the same as --kms atomic: fail where the driver has no atomic modesetting"},
+    {"--gpu-enlarge", T_FLAG, OFF(gpu_enlarge), 0, 0, K, "           the GPU enlarges the tier's smaller picture even where the display engine's scaler could"},
     {"--rotate", T_INT, OFF(rotation), 0, 270, K | RO, "DEG        0, 90, 180 or 270, counter-clockwise as DRM (portrait panels) [0]"},
     {"--size", T_SIZE, 0, 16, 4096, RO | V | K | B | JD_OPT_REFERENCE, "WxH        image or window size (drm: the mode) [512x512]"},
     {"--frames", T_INT, OFF(frames), 1, 100000000, R | B, "N          frames [render 1, bench 200, view/kiosk: until closed]"},
@@ -358,9 +360,11 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
         }
         case T_PRECISION:
         case T_ANTIALIAS:
-        case T_PROBE: {
-            /* The words in the enums' order (jd_precision, jd_antialias, jd_probe). */
-            static const char *const words[][3] = {{"auto", "highp", "mediump"}, {"auto", "off", "post"}, {"auto", "on", "off"}};
+        case T_PROBE:
+        case T_KMS: {
+            /* The words in the enums' order (jd_precision, jd_antialias, jd_probe, jd_kms_api). */
+            static const char *const words[][3] = {
+                {"auto", "highp", "mediump"}, {"auto", "off", "post"}, {"auto", "on", "off"}, {"auto", "atomic", "legacy"}};
             const char *const *w = words[op->type - T_PRECISION];
             int k = 0;
             while (k < 3 && strcmp(v, w[k])) k++;
@@ -370,7 +374,8 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
             }
             if (op->type == T_PRECISION) o->rdesc.precision = (jd_precision)k;
             else if (op->type == T_ANTIALIAS) o->rdesc.antialias = (jd_antialias)k;
-            else o->rdesc.program_probe = (jd_probe)k;
+            else if (op->type == T_PROBE) o->rdesc.program_probe = (jd_probe)k;
+            else o->kms = k;
             break;
         }
         case T_FLAG:

@@ -26,7 +26,8 @@ typedef struct jd_options {
     int pixel_samples;
     const char *drm_device, *connector, *display_mode;
     int rotation;
-    int atomic;
+    int kms;           /* kiosk: jd_kms_api (platform.h) */
+    int atomic;        /* kiosk --atomic: kms atomic */
     int gpu_enlarge;   /* kiosk: no display-engine scaling of the tier's picture */
     int wait_display;
     int width, height;

@@ -160,7 +160,7 @@ int jd_session_open(jd_session *s, jd_options *o, const char *cmd)
                             * an immediate-mode GPU pay the samples' memory
                             * traffic for nothing). */
                            .single_sample = o->rdesc.antialias != JD_AA_AUTO, .fullscreen = o->fullscreen,
-                           .atomic = o->atomic};
+                           .kms = o->atomic ? JD_KMS_ATOMIC : (jd_kms_api)o->kms};
     /* No display, no point decoding: say so at once (or, with
      * --wait-display, wait for one: systemd may start the kiosk before the
      * panel is on or the display server has let go of it). */

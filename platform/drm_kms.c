@@ -47,15 +47,18 @@ typedef struct drm_platform {
     struct gbm_surface *gbm_surface;
     uint32_t format;
     /* The drawable where the plane's scaler enlarges it to the mode
-     * (jd_platform_scale_out, --atomic only); 0 x 0: the mode's size. */
+     * (jd_platform_scale_out, atomic only); 0 x 0: the mode's size. */
     int out_w, out_h;
     EGLDisplay edpy;
     EGLContext ctx;
     EGLSurface surf;
     struct gbm_bo *shown;
     int modeset_done, flip_pending;
-    /* Atomic modesetting: the primary plane and the property ids it needs. */
-    int atomic;
+    /* Atomic modesetting: the primary plane and the property ids it needs.
+     * atomic_auto: chosen, not asked for (JD_KMS_AUTO): a first modeset the
+     * driver refuses falls back to legacy. kms_why: why legacy, if so. */
+    int atomic, atomic_auto;
+    char kms_why[96];
     uint32_t plane_id, mode_blob;
     uint32_t p_conn_crtc, p_crtc_mode, p_crtc_active, p_fb, p_plane_crtc, p_src_x, p_src_y, p_src_w, p_src_h,
         p_crtc_x, p_crtc_y, p_crtc_w, p_crtc_h;
@@ -288,8 +291,7 @@ static jd_result setup_atomic(drm_platform *p, jd_error *err)
 {
     if (drmSetClientCap(p->fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) != 0 ||
         drmSetClientCap(p->fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0)
-        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: the driver does not offer atomic modesetting (drop --atomic)",
-                       p->device);
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s: the driver does not offer atomic modesetting", p->device);
     p->plane_id = primary_plane(p);
     if (!p->plane_id) return jd_fail(err, JD_ERR_PLATFORM, "%s: no primary plane for the CRTC of %s", p->device, p->connector_name);
     const uint32_t C = DRM_MODE_OBJECT_CONNECTOR, R = DRM_MODE_OBJECT_CRTC, P = DRM_MODE_OBJECT_PLANE;
@@ -540,10 +542,27 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
     }
     if ((r = choose_output(p, desc, err))) return fail_open(p, r);
     p->saved_crtc = drmModeGetCrtc(p->fd, p->crtc_id);
-    if (desc->atomic) {
-        if ((r = setup_atomic(p, err))) return fail_open(p, r);
-        p->atomic = 1;
-    }
+    jd_kms_api kms = desc->atomic ? JD_KMS_ATOMIC : desc->kms;
+    if (kms != JD_KMS_LEGACY) {
+        jd_error why = {0};
+        r = setup_atomic(p, kms == JD_KMS_ATOMIC ? err : &why);
+        if (r && kms == JD_KMS_ATOMIC) {
+            size_t n = strlen(err->msg);
+            snprintf(err->msg + n, sizeof err->msg - n, " (--kms auto falls back to legacy)");
+            return fail_open(p, r);
+        }
+        if (r) {
+            /* Auto: legacy it is, and the kiosk says why. */
+            const char *at = strstr(why.msg, ": ");
+            snprintf(p->kms_why, sizeof p->kms_why, "%.90s", at ? at + 2 : why.msg);
+            drmSetClientCap(p->fd, DRM_CLIENT_CAP_ATOMIC, 0);
+            if (p->mode_blob) drmModeDestroyPropertyBlob(p->fd, p->mode_blob);
+            p->mode_blob = 0;
+        }
+        p->atomic = !r;
+        p->atomic_auto = !r && kms == JD_KMS_AUTO;
+    } else
+        snprintf(p->kms_why, sizeof p->kms_why, "asked for");
     p->max_w = p->mode.hdisplay, p->max_h = p->mode.vdisplay;
     open_uevents(p);
 
@@ -597,10 +616,12 @@ static jd_result drm_open(const jd_platform_desc *desc, void **out, jd_error *er
              p->render_node[0] ? ", GPU " : "", p->render_node);
     at = strlen(p->describe);
     if (p->atomic)
-        snprintf(p->describe + at, sizeof p->describe - at, "; fences: %s, %s",
+        snprintf(p->describe + at, sizeof p->describe - at, "; atomic modesetting; fences: %s, %s",
                  p->dup_fence ? "the GPU's to the plane" : p->p_in_fence ? "none to the plane (EGL has no native fences)"
                                                                            : "none to the plane (no IN_FENCE_FD)",
                  p->p_out_fence ? "the flip's waited on" : "flip events only (no OUT_FENCE_PTR)");
+    else
+        snprintf(p->describe + at, sizeof p->describe - at, "; legacy modesetting (%s)", p->kms_why);
     at = strlen(p->describe);
     snprintf(p->describe + at, sizeof p->describe - at, "; hotplug %s",
              p->uevent_fd >= 0 ? "followed (kernel uevents)" : "not followed (no uevent socket)");
@@ -727,6 +748,20 @@ static jd_result drm_present(void *impl, jd_error *err)
         /* The one modeset; every later frame is a page flip. */
         int rc = p->atomic ? atomic_commit(p, fb, 1, -1, NULL)
                            : drmModeSetCrtc(p->fd, p->crtc_id, fb, 0, 0, &p->connector_id, 1, &p->mode);
+        if (rc != 0 && p->atomic_auto && !p->out_w && !p->modesets && errno != EACCES) {
+            /* Atomic chosen, not asked for, and its first modeset refused:
+             * the legacy path, for good, said once. Not where the plane
+             * scales the picture (legacy cannot show it enlarged). */
+            int e = errno;
+            rc = drmModeSetCrtc(p->fd, p->crtc_id, fb, 0, 0, &p->connector_id, 1, &p->mode);
+            if (rc == 0) {
+                snprintf(p->kms_why, sizeof p->kms_why, "the atomic modeset was refused: %.60s", strerror(e));
+                fprintf(stderr, "jade: %s: %s; legacy modesetting from here on\n", p->device, p->kms_why);
+                p->atomic = p->atomic_auto = 0;
+                p->dup_fence = NULL;
+                drmSetClientCap(p->fd, DRM_CLIENT_CAP_ATOMIC, 0);
+            }
+        }
         if (rc != 0)
             return jd_fail(err, JD_ERR_PLATFORM, "%s: modeset on %s failed: %s%s", p->device, p->connector_name,
                            strerror(errno), errno == EACCES ? " (another process is DRM master)" : "");
@@ -832,6 +867,7 @@ static void drm_stats(const void *impl, jd_present_stats *st)
     st->flips = p->flips;
     st->modesets = p->modesets;
     st->in_fences = p->in_fences;
+    st->atomic = p->atomic;
     st->out_fences = p->out_fences;
     st->refresh_hz = p->mode.vrefresh;
 }

@@ -12,6 +12,13 @@ extern "C" {
 
 typedef struct jd_platform jd_platform;
 
+/* How the drm platform sets the mode and shows frames. */
+typedef enum jd_kms_api {
+    JD_KMS_AUTO = 0, /* atomic where the driver offers it (and takes the first modeset), else legacy */
+    JD_KMS_ATOMIC,   /* atomic only: opening fails where the driver has none */
+    JD_KMS_LEGACY    /* SetCrtc and PageFlip: no plane scaling, no explicit fences */
+} jd_kms_api;
+
 /* Zero fields take the defaults in brackets. */
 typedef struct jd_platform_desc {
     const char *kind;         /* "headless" [default], "x11" or "drm" */
@@ -23,7 +30,8 @@ typedef struct jd_platform_desc {
     const char *drm_device;   /* [the first KMS-capable /dev/dri/card*] */
     const char *connector;    /* e.g. "HDMI-A-1" [the first connected] */
     const char *display_mode; /* "WxH" or "WxH@Hz" [preferred, else largest] */
-    int atomic;               /* atomic modesetting instead of legacy SetCrtc/PageFlip */
+    jd_kms_api kms;           /* [JD_KMS_AUTO] */
+    int atomic;               /* nonzero: the same as kms = JD_KMS_ATOMIC (its older name) */
 } jd_platform_desc;
 
 typedef enum jd_event_type {
@@ -46,8 +54,9 @@ typedef struct jd_present_stats {
     unsigned frames, missed_vblanks; /* missed: flips that took more than one refresh */
     unsigned flips;                  /* page flips the display confirmed (drm: frames - modesets) */
     unsigned modesets;               /* drm: 1, and one more each time a display came back or changed mode */
-    unsigned in_fences, out_fences;  /* drm --atomic: commits that carried the GPU's fence; flip fences waited on */
+    unsigned in_fences, out_fences;  /* drm, atomic: commits that carried the GPU's fence; flip fences waited on */
     double refresh_hz;
+    int atomic;                      /* drm: the mode is set and frames shown by atomic commits */
 } jd_present_stats;
 
 /* Says, in milliseconds and without creating a GL context, whether open
@@ -63,7 +72,7 @@ jd_result jd_platform_present(jd_platform *p, jd_error *err);
 /* Top-down RGBA8 rows of the frame just drawn (call before present). */
 jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err);
 /* Frames drawn at w x h and enlarged by the display engine on their way
- * out (drm --atomic: the primary plane's scaler, where the driver takes it,
+ * out (drm, atomic: the primary plane's scaler, where the driver takes it,
  * asked with a test commit), not by a GL pass: the drawable becomes w x h,
  * the display keeps its mode. 1 if taken, 0 if not (nothing changed).
  * The display's own size takes the scaling off again. */

@@ -113,11 +113,15 @@ wait_for() {
     grep -q "$2" "$1"
 }
 if have 300 legacy; then
-    if kiosk legacy 300 $light --frames 6; then flips legacy 6; else bad "legacy: $(cat "$out/legacy")"; fi
+    if kiosk legacy 300 $light --frames 6 --kms legacy; then flips legacy 6; else bad "legacy: $(cat "$out/legacy")"; fi
+    grep -q "; legacy modesetting (asked for)" "$out/legacy" || bad "legacy: not said: $(head -1 "$out/legacy")"
     restored legacy
 fi
+# Atomic unasked (--kms auto, the default), where the driver has it.
 if have 300 atomic; then
-    if kiosk atomic 300 $light --frames 6 --atomic; then flips atomic 6; else bad "atomic: $(cat "$out/atomic")"; fi
+    if kiosk atomic 300 $light --frames 6; then flips atomic 6; else bad "atomic: $(cat "$out/atomic")"; fi
+    if grep -q "; atomic modesetting; fences" "$out/atomic"; then ok "atomic: chosen by default: $(grep -o 'atomic modesetting; fences' "$out/atomic")"
+    else bad "atomic: not chosen by default: $(head -1 "$out/atomic")"; fi
     restored atomic
     # Explicit fences: every flip's OUT_FENCE_PTR fence waited on (vkms has the
     # property); the GPU's fence goes to the plane only where EGL has native
@@ -125,6 +129,30 @@ if have 300 atomic; then
     if grep -q "fences in 0 out 5" "$out/atomic" && grep -q "fences: none to the plane (EGL has no native fences), the flip's waited on" "$out/atomic"; then
         ok "atomic: explicit fences: $(grep -o 'fences: [^;]*' "$out/atomic"); $(grep -o 'fences in [0-9]* out [0-9]*' "$out/atomic")"
     else bad "atomic: fences: $(grep -o 'fences[^;]*' "$out/atomic" | tr '\n' ' ')"; fi
+fi
+# A driver without atomic modesetting, and one whose atomic path refuses the
+# modeset (vkms made to, by a preloaded library): the default falls back to
+# legacy and says why; --atomic fails, naming the problem.
+refuse="$(dirname "$touch")/kms_refuse_atomic.so"
+# refusing NAME LIMIT WHAT ARGS...: the kiosk with JADE_REFUSE=WHAT preloaded.
+refusing() {
+    r_name=$1 r_limit=$2 r_what=$3
+    shift 3
+    bounded "$r_name" "$r_limit" env JADE_REFUSE="$r_what" LD_PRELOAD="$refuse" "$jade" kiosk --drm-device /dev/dri/card0 "$@"
+}
+if have 400 fallback; then
+    if refusing no_atomic 150 cap $light --frames 4 &&
+        grep -q "; legacy modesetting (the driver does not offer atomic modesetting);" "$out/no_atomic"; then flips no_atomic 4
+    else bad "no atomic: $(cat "$out/no_atomic")"; fi
+    restored no_atomic
+    if refusing refused 150 modeset $light --frames 4 &&
+        grep -q "the atomic modeset was refused: Invalid argument; legacy modesetting from here on" "$out/refused"; then
+        flips refused 4
+    else bad "atomic modeset refused: $(cat "$out/refused")"; fi
+    restored refused
+    if refusing must_atomic 60 cap $light --frames 1 --atomic; then bad "--atomic ran without atomic"
+    elif grep -q "does not offer atomic modesetting (--kms auto falls back to legacy)" "$out/must_atomic"; then ok "--atomic without it: $(head -1 "$out/must_atomic")"
+    else bad "--atomic without it: $(cat "$out/must_atomic")"; fi
 fi
 # What was chosen is what was asked.
 if have 200 choose; then
@@ -174,15 +202,15 @@ if have 700 capture; then
     restored capture
 fi
 # The display engine enlarging the picture: under the mali400 profile the
-# tier draws 1280x720 at 960x540, and with --atomic the kiosk asks the
-# plane's scaler to enlarge it (vkms scales here, nearest pixel:
-# tools/kms/vkms-plane-scaling.patch), not a GL pass. What the writeback
-# reads back is the whole picture at the mode's size, as jade's render
-# enlarges it (bilinear: the outline's pixels differ). Without --atomic the
-# GPU enlarges it, and says why.
+# tier draws 1280x720 at 960x540, and with atomic modesetting (the default
+# where the driver has it) the kiosk asks the plane's scaler to enlarge it
+# (vkms scales here, nearest pixel: tools/kms/vkms-plane-scaling.patch), not
+# a GL pass. What the writeback reads back is the whole picture at the
+# mode's size, as jade's render enlarges it (bilinear: the outline's pixels
+# differ). With legacy modesetting the GPU enlarges it, and says why.
 tier="--display-mode 1280x720 --profile mali400 --decode-timeout-ms 60000 --mode none --antialias off --mesh $cube"
 if have 500 scale; then
-    if kiosk scale 300 $tier --frames 3 --atomic --light-speed 0 --screenshot "$out/scaled.png" &&
+    if kiosk scale 300 $tier --frames 3 --light-speed 0 --screenshot "$out/scaled.png" &&
         grep -q "^kiosk: the display engine enlarges 960x540 to 1280x720" "$out/scale"; then
         ok "the plane's scaler enlarges the tier's picture: $(grep '^kiosk: the display' "$out/scale"); $(grep '^kiosk: [0-9]* frames' "$out/scale")"
         if bounded scaled_render 200 "$jade" render --size 1280x720 --profile mali400 --decode-timeout-ms 60000 --mode none --antialias off \
@@ -193,8 +221,8 @@ if have 500 scale; then
         else bad "the enlarged scan-out differs from the render: $(cat "$out/scmp" "$out/scaled_render" 2>/dev/null | tr '\n' ' ')"; fi
     else bad "plane scaling: $(cat "$out/scale")"; fi
     restored scale
-    if kiosk scale_gpu 150 $tier --frames 2 && grep -q "^kiosk: the GPU enlarges 960x540 to 1280x720 (--atomic" "$out/scale_gpu"; then
-        ok "without --atomic the GPU enlarges it: $(grep '^kiosk: the GPU' "$out/scale_gpu")"
+    if kiosk scale_gpu 150 $tier --frames 2 --kms legacy && grep -q "^kiosk: the GPU enlarges 960x540 to 1280x720 (legacy" "$out/scale_gpu"; then
+        ok "with legacy modesetting the GPU enlarges it: $(grep '^kiosk: the GPU' "$out/scale_gpu")"
     else bad "legacy with the tier: $(cat "$out/scale_gpu")"; fi
 fi
 # Hotplug: the display unplugged and plugged back in. vkms makes no hotplug
@@ -233,11 +261,11 @@ hotplug() {
 if [ ! -w "$force" ]; then
     echo "no debugfs force file for Virtual-1: hotplug is not tried" | tee -a "$res"
 else
-    if have 450 hotplug; then hotplug hotplug $light; fi
+    if have 450 hotplug; then hotplug hotplug $light --kms legacy; fi
     # The same with the plane's scaler enlarging the picture: the display
     # comes back with the same mode, and the plane still enlarges 960x540.
     if have 450 hotplug_scaled; then
-        hotplug hotplug_scaled $tier --atomic --light-speed 0
+        hotplug hotplug_scaled $tier --light-speed 0
         if grep -q "crtc-pos=1280x720+0+0" "$out/hotplug_scaled_plane" &&
             grep -q "src-pos=960.000000x540.000000+0.000000+0.000000" "$out/hotplug_scaled_plane"; then
             ok "hotplug_scaled: after the second modeset the plane still enlarges: $(cat "$out/hotplug_scaled_plane")"

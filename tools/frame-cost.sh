@@ -3,8 +3,8 @@
 # default asset) on every board of `jade info --boards`, for the default
 # scene and a close-up (--distance 1.6), at 1280x720 and 1920x1080, and at
 # 960x540: the frame of a board whose tier draws 1080p at that size when
-# the display engine enlarges it (the kiosk with --atomic, where the
-# plane's scaler takes it), with no GL pass at 1080p.
+# the display engine enlarges it (the kiosk with atomic modesetting, its
+# default, where the plane's scaler takes it), with no GL pass at 1080p.
 #
 #   tools/frame-cost.sh [JADE] [--check EXPECTED | --update EXPECTED]
 #

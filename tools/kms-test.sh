@@ -61,6 +61,8 @@ if [ ! -f "$ko" ]; then
     cp "$work/vkms-src/vkms.ko" "$ko"
 fi
 cc -O2 -Wall -Wextra "$here/tests/uinput_touch.c" -o "$work/uinput_touch"
+# Beside it, what the guest preloads to make vkms refuse atomic modesetting.
+cc -O2 -Wall -Wextra -shared -fPIC "$here/tests/kms_refuse_atomic.c" -o "$work/kms_refuse_atomic.so" -ldl
 # The guest stops starting checks at guest_s seconds of its uptime, so that
 # its results come back whole before qemu's time (host_s) runs out.
 guest_s=1000 host_s=1100
