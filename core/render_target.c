@@ -89,6 +89,47 @@ jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_dept
     return JD_OK;
 }
 
+/* The storage of a target that follows the picture's size (the frame
+ * before the pass after it, full's levels' sum), made again for w x h where
+ * that takes other powers of two: at start-up and at a resize, never in a
+ * frame. Sized for the picture, not for the largest the budget allows: at
+ * 1080p on a board whose tier draws 960x540 the frame's target is 1024 x
+ * 1024, not 2048 x 2048 (25 MB of GPU memory, 6 here), and where nothing
+ * goes through it (the display engine enlarging the picture) it keeps one
+ * texel. w or h 0: not needed. A new texture, attached afresh (some
+ * drivers mishandle a texture specified again while attached). */
+jd_result jdr_fit_target(jd_renderer *r, target *t, int w, int h, int linear, const char *what, jd_error *err)
+{
+    int tw = pot(w > 0 && h > 0 ? w : 1), th = pot(w > 0 && h > 0 ? h : 1);
+    t->w = w;
+    t->h = h;
+    if (tw == t->tw && th == t->th) return JD_OK;
+    if (tw > r->d.caps->max_texture_size || th > r->d.caps->max_texture_size)
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s target %dx%d exceeds the max texture size %d", what, tw, th,
+                       r->d.caps->max_texture_size);
+    size_t texel = t->depth ? 6 : 4;
+    while (glGetError() != GL_NO_ERROR) {}
+    glDeleteTextures(1, &t->tex);
+    r->target_bytes -= (size_t)t->tw * t->th * texel;
+    t->tex = jdr_new_texture(tw, th, linear ? GL_LINEAR : GL_NEAREST);
+    t->tw = tw;
+    t->th = th;
+    r->target_bytes += (size_t)tw * th * texel;
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
+    if (t->depth) {
+        glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, tw, th);
+    }
+    GLenum e = glGetError(), st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (e == GL_OUT_OF_MEMORY)
+        return jd_fail(err, JD_ERR_GL, "%s target %dx%d: the GPU is out of memory", what, tw, th);
+    if (st != GL_FRAMEBUFFER_COMPLETE)
+        return jd_fail(err, JD_ERR_GL, "%s framebuffer %dx%d is incomplete (0x%x)", what, tw, th, st);
+    clear_whole();
+    return JD_OK;
+}
+
 /* A cube map of RGBA8 faces, each its own framebuffer: six targets sharing
  * one texture (held by the first). Linear filtering, clamped at the edges. */
 jd_result jdr_make_cube_target(jd_renderer *r, target *faces, int size, const char *what, jd_error *err)

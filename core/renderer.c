@@ -233,11 +233,11 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
                                err)) ||
         (res = jdr_make_target(r, &r->soft, d->light_map_size / 2, d->light_map_size / 2, 0, 1, "soft shadow", err)))
         goto fail;
-    if (!r->vertex_diffusion &&
-        (res = jdr_make_target(r, &r->wide, (d->max_width + 1) / 2, (d->max_height + 1) / 2, 1, 1, "full's levels", err)))
-        goto fail;
+    /* These two follow the picture's size: jd_renderer_resize makes their
+     * storage (jdr_fit_target). */
+    if (!r->vertex_diffusion && (res = jdr_make_target(r, &r->wide, 1, 1, 1, 1, "full's levels", err))) goto fail;
     if ((r->post_aa || r->may_scale) &&
-        (res = jdr_make_target(r, &r->scene, d->max_width, d->max_height, 1, 1, "frame before anti-aliasing", err)))
+        (res = jdr_make_target(r, &r->scene, 1, 1, 1, 1, "frame before anti-aliasing", err)))
         goto fail;
     for (int i = 0; i < DIFF_TEXTURES; i++)
         if ((res = jdr_make_target(r, &r->diff_lv[i], d->diffusion_size >> ((i + 1) / 2),
@@ -301,10 +301,18 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
     }
     width = r->iw;
     height = r->ih;
+    /* Storage for what this size draws through: `scene` where the frame
+     * goes through the pass after it, full's levels' sum at half the
+     * picture's resolution (a frame may use less of it: jd_renderer_frame). */
+    jd_result res = JD_OK;
+    int via = r->post_aa || width != r->d.width || height != r->d.height;
+    if (r->scene.fbo)
+        res = jdr_fit_target(r, &r->scene, via ? width : 0, via ? height : 0, 1, "frame before anti-aliasing", err);
+    if (!res && r->wide.fbo) res = jdr_fit_target(r, &r->wide, (width + 1) / 2, (height + 1) / 2, 1, "full's levels", err);
+    glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
+    if (res) return res;
     r->scene.w = width;
     r->scene.h = height;
-    /* full's levels' sum: half the picture's resolution until a frame
-     * says how large a level texel is on screen (jd_renderer_frame). */
     r->wide.w = (width + 1) / 2;
     r->wide.h = (height + 1) / 2;
     int div = r->d.spread_divisor;

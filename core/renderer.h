@@ -161,8 +161,11 @@ void jd_renderer_finish(jd_renderer *r);
 /* glFinish after each pass, recording CPU (and, where timer queries exist,
  * GPU) times per pass in jd_frame_stats: for bench, not for a kiosk. */
 void jd_renderer_set_timing(jd_renderer *r, int on);
-/* A new drawable size within desc.max_width x max_height: only viewports
- * change, nothing is reallocated. */
+/* A new drawable size within desc.max_width x max_height, between frames.
+ * The two targets that follow the picture's size (the frame before the
+ * pass after it, full's levels' sum) get storage for it where it takes
+ * other powers of two, and the frame's none where nothing goes through it:
+ * JD_ERR_GL where the GPU has no memory left for them. */
 jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *err);
 
 /* What a renderer chose for this device, and what it holds. */

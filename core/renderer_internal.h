@@ -230,6 +230,7 @@ jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_dept
                              const char *what, jd_error *err);
 jd_result jdr_make_cube_target(jd_renderer *r, target *faces, int size, const char *what, jd_error *err);
 void jdr_free_target(target *t);
+jd_result jdr_fit_target(jd_renderer *r, target *t, int w, int h, int linear, const char *what, jd_error *err);
 jd_result jdr_upload_mesh(const jd_mesh *m, const float *thick, jd_vec3 c, float inv_r, GLuint *vbo, GLuint *ibo,
                              jd_arena *a, jd_error *err);
 jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, const float *thick, jd_vec3 c, float inv_r, jd_arena *a,

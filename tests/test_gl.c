@@ -199,6 +199,64 @@ int main(int argc, char **argv)
         }
         jd_renderer_destroy(r);
     }
+    /* The targets that follow the picture's size are sized for it at each
+     * resize: a tier's 1080p drawn at 960x540 takes a 1024x1024 frame
+     * target, and the same renderer made 960x540 (the display engine
+     * enlarging) keeps one texel of it. Grown again, the picture is the one
+     * a renderer made at that size draws. */
+    jd_arena_reset(&a, mark);
+    {
+        jd_gl_caps board = caps;
+        snprintf(board.tier, sizeof board.tier, "test board");
+        board.max_vertex_texture_units = 0; /* full's levels' sum per fragment, in its own target */
+        jd_renderer_desc d = {0};
+        d.mesh = &mesh;
+        d.caps = &board;
+        d.target_fbo = jd_platform_framebuffer(p);
+        d.width = 1920, d.height = 1080;
+        d.antialias = JD_AA_OFF;
+        jd_renderer *t = NULL;
+        CHECK(jd_renderer_create(&d, &a, &t, &err) == JD_OK, "tier renderer: %s", err.msg);
+        if (t) {
+            jd_renderer_info i1, i2, i3;
+            jd_renderer_get_info(t, &i1);
+            CHECK(jd_renderer_resize(t, 960, 540, &err) == JD_OK, "resize to 960x540: %s", err.msg);
+            jd_renderer_get_info(t, &i2);
+            CHECK(jd_renderer_resize(t, 1920, 1080, &err) == JD_OK, "resize to 1920x1080: %s", err.msg);
+            jd_renderer_get_info(t, &i3);
+            /* The frame target 1024x1024 with depth -> one texel; full's
+             * levels' sum (480x270 -> 512x512) the same at both sizes. */
+            size_t frame_target = (size_t)1024 * 1024 * 6 - 6;
+            printf("render targets, a tier's 1920x1080 drawn at 960x540: %zu bytes; at 960x540 unscaled: %zu; "
+                   "1920x1080 again: %zu\n", i1.target_bytes, i2.target_bytes, i3.target_bytes);
+            CHECK(i1.target_bytes - i2.target_bytes == frame_target && i3.target_bytes == i1.target_bytes,
+                  "the frame target follows the size (%zu -> %zu -> %zu bytes)", i1.target_bytes, i2.target_bytes,
+                  i3.target_bytes);
+            jd_renderer_destroy(t);
+        }
+        jd_arena_reset(&a, mark);
+        static uint8_t grown[64 * 64 * 4], made[64 * 64 * 4];
+        jd_scene s;
+        jd_scene_defaults(&s, NULL);
+        d.width = d.height = 32;
+        d.max_width = d.max_height = 64;
+        d.render_scale = 0.5f; /* drawn at half, enlarged: through the frame target */
+        d.antialias = JD_AA_AUTO;
+        t = NULL;
+        CHECK(jd_renderer_create(&d, &a, &t, &err) == JD_OK && jd_renderer_frame(t, &s, NULL, &err) == JD_OK &&
+                  jd_renderer_resize(t, 64, 64, &err) == JD_OK && jd_renderer_frame(t, &s, NULL, &err) == JD_OK &&
+                  jd_platform_read_rgba(p, grown, &err) == JD_OK,
+              "32x32 grown to 64x64: %s", err.msg);
+        jd_renderer_destroy(t);
+        jd_arena_reset(&a, mark);
+        d.width = d.height = 64;
+        t = NULL;
+        CHECK(jd_renderer_create(&d, &a, &t, &err) == JD_OK && jd_renderer_frame(t, &s, NULL, &err) == JD_OK &&
+                  jd_platform_read_rgba(p, made, &err) == JD_OK,
+              "made at 64x64: %s", err.msg);
+        jd_renderer_destroy(t);
+        CHECK(!memcmp(grown, made, sizeof made), "a renderer grown to 64x64 draws what one made at 64x64 does");
+    }
     /* Small register files (VideoCore IV, Mali-400) project 2x2 blocks and
      * reduce once more: the same coefficients. */
     jd_arena_reset(&a, mark);
