@@ -121,12 +121,18 @@ static int enlarge_on_display(jd_session *s, const jd_options *o)
     jd_renderer_get_info(s->renderer, &info);
     int dw, dh, w = info.render_width, h = info.render_height;
     jd_platform_display_size(s->platform, &dw, &dh);
-    if (o->gpu_enlarge || o->rdesc.render_scale != 0.0f || !info.tier || (w >= dw && h >= dh)) return 0;
-    if (!jd_platform_scale_out(s->platform, w, h)) {
+    if (!info.tier || (w >= dw && h >= dh)) return 0;
+    /* An explicit --render-scale keeps the GPU's enlarging: the renderer
+     * would scale the smaller drawable once more. */
+    const char *kept = o->gpu_enlarge                 ? "--gpu-enlarge"
+                       : o->rdesc.render_scale != 0.0f ? "--render-scale: the display engine is asked only for the tier's size"
+                                                       : NULL;
+    if (kept || !jd_platform_scale_out(s->platform, w, h)) {
         jd_present_stats ps;
         jd_platform_present_stats(s->platform, &ps);
         printf("kiosk: the GPU enlarges %dx%d to %dx%d (%s)\n", w, h, dw, dh,
-               strcmp(o->platform, "drm") ? "only drm asks a display engine's scaler"
+               kept                       ? kept
+               : strcmp(o->platform, "drm") ? "only drm asks a display engine's scaler"
                : ps.atomic                ? "the display engine's scaler refused it"
                                           : "legacy modesetting cannot ask the display engine's scaler");
         return 0;
@@ -166,11 +172,12 @@ int jd_cmd_kiosk(int argc, char **argv)
     }
     jd_error err = {0};
     double *times = kiosk_times, *sorted = kiosk_sorted;
-    fprintf(stderr, "%s\n%s\n", jd_platform_describe(s.platform), jd_antialias_describe(s.renderer));
+    fprintf(stderr, "%s\n", jd_platform_describe(s.platform));
     if (enlarge_on_display(&s, &o)) {
         jd_session_close(&s);
         return 1;
     }
+    fprintf(stderr, "%s\n", jd_antialias_describe(s.renderer)); /* as drawn now: the scaler changes it */
     jd_scene sc = o.scene;
     double t_start = jd_clock_ms(), t_prev = t_start, t_log = t_start, t_input = -1e300, t_ease = t_start;
     /* The user's turn of the camera, eased back to the scene's own once

@@ -253,12 +253,17 @@ const char *jd_session_triangles(const jd_session *s, char *buf, size_t cap)
 
 const char *jd_antialias_describe(const jd_renderer *r)
 {
-    static char line[96];
+    static char line[160];
     jd_renderer_info info;
     jd_renderer_get_info(r, &info);
     int samples = info.target_samples;
     if (info.post_antialias)
         snprintf(line, sizeof line, "anti-aliasing: a pass after the frame (the target has no multisampling)");
+    else if (samples > 1 && info.tier)
+        /* Drawn smaller into a texture of one sample, then enlarged: the
+         * target's samples see only the enlarging pass's quad. */
+        snprintf(line, sizeof line, "anti-aliasing: none on the picture drawn at %dx%d (the target's %dx multisampling "
+                 "sees only the enlarging)", info.render_width, info.render_height, samples);
     else if (samples > 1)
         snprintf(line, sizeof line, "anti-aliasing: %dx multisampling in the target", samples);
     else
