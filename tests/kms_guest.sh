@@ -209,7 +209,7 @@ fi
 # mode's size, as jade's render enlarges it (bilinear: the outline's pixels
 # differ). With legacy modesetting the GPU enlarges it, and says why.
 tier="--display-mode 1280x720 --profile mali400 --decode-timeout-ms 60000 --mode none --antialias off --mesh $cube"
-if have 500 scale; then
+if have 600 scale; then
     if kiosk scale 300 $tier --frames 3 --light-speed 0 --screenshot "$out/scaled.png" &&
         grep -q "^kiosk: the display engine enlarges 960x540 to 1280x720" "$out/scale"; then
         ok "the plane's scaler enlarges the tier's picture: $(grep '^kiosk: the display' "$out/scale"); $(grep '^kiosk: [0-9]* frames' "$out/scale")"
@@ -221,8 +221,17 @@ if have 500 scale; then
         else bad "the enlarged scan-out differs from the render: $(cat "$out/scmp" "$out/scaled_render" 2>/dev/null | tr '\n' ' ')"; fi
     else bad "plane scaling: $(cat "$out/scale")"; fi
     restored scale
-    if kiosk scale_gpu 150 $tier --frames 2 --kms legacy && grep -q "^kiosk: the GPU enlarges 960x540 to 1280x720 (legacy" "$out/scale_gpu"; then
-        ok "with legacy modesetting the GPU enlarges it: $(grep '^kiosk: the GPU' "$out/scale_gpu")"
+    # With the display's multisampled config (no --antialias off): under the
+    # scaler the picture is drawn into the multisampled surface itself;
+    # enlarged by the GPU its edges are not multisampled, and it says so.
+    tier_aa=$(echo "$tier" | sed 's/ --antialias off//')
+    if kiosk scale_aa 150 $tier_aa --frames 2 --light-speed 0 && grep -q "^kiosk: the display engine enlarges" "$out/scale_aa" &&
+        grep -q "^anti-aliasing: 4x multisampling in the target" "$out/scale_aa"; then
+        ok "under the scaler the picture is multisampled: $(grep '^anti-aliasing' "$out/scale_aa")"
+    else bad "scaler and multisampling: $(cat "$out/scale_aa")"; fi
+    if kiosk scale_gpu 150 $tier_aa --frames 2 --kms legacy && grep -q "^kiosk: the GPU enlarges 960x540 to 1280x720 (legacy" "$out/scale_gpu" &&
+        grep -q "^anti-aliasing: none on the picture drawn at 960x540 (the target's 4x" "$out/scale_gpu"; then
+        ok "with legacy modesetting the GPU enlarges it: $(grep '^kiosk: the GPU' "$out/scale_gpu"); $(grep '^anti-aliasing' "$out/scale_gpu")"
     else bad "legacy with the tier: $(cat "$out/scale_gpu")"; fi
 fi
 # Hotplug: the display unplugged and plugged back in. vkms makes no hotplug
