@@ -246,8 +246,11 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
             goto fail;
     if ((res = jdr_build_projection_quads(r, a, err))) goto fail;
     glBindFramebuffer(GL_FRAMEBUFFER, d->target_fbo);
+    /* The storage of the targets that follow the size is made here: a GPU
+     * without the memory for it fails the create, its GL names released. */
+    if ((res = jd_renderer_resize(r, d->width, d->height, err))) goto fail;
     *out = r;
-    return jd_renderer_resize(r, d->width, d->height, err);
+    return JD_OK;
 fail:
     jd_renderer_destroy(r);
     return res;

@@ -149,6 +149,15 @@ int main(int argc, char **argv)
         d.light_map_size = 4096; /* refused later still */
         CHECK(jd_renderer_create(&d, &a, &bad, &err) == JD_ERR_ARG, "light map 4096 refused: %s", err.msg);
         CHECK(jd_arena_mark(&a) == bottom && jd_arena_top_mark(&a) == top, "a failed create gives the arena back");
+        /* Refused last of all, at the size's own targets (jd_renderer_resize). */
+        jd_gl_caps tiny = caps;
+        tiny.max_texture_size = 256;
+        d.caps = &tiny;
+        d.light_map_size = 256;
+        d.antialias = JD_AA_POST; /* the frame goes through its own target, 512x512 */
+        CHECK(jd_renderer_create(&d, &a, &bad, &err) == JD_ERR_UNSUPPORTED && strstr(err.msg, "exceeds the max texture size"),
+              "a frame target past the GPU's texture size refused: %s", err.msg);
+        CHECK(jd_arena_mark(&a) == bottom && jd_arena_top_mark(&a) == top, "that failed create gives the arena back too");
     }
     jd_renderer *r = make(&a, &mesh, &caps, p, JD_PRECISION_AUTO, 64);
     if (r) {
