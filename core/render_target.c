@@ -59,44 +59,30 @@ static void clear_whole(void)
     if (scissor) glEnable(GL_SCISSOR_TEST);
 }
 
+/* A target of w x h: its framebuffer (and depth renderbuffer), the
+ * storage from jdr_fit_target, as every target's is. */
 jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_depth, int linear,
                              const char *what, jd_error *err)
 {
-    const jd_gl_caps *c = r->d.caps;
-    t->w = w;
-    t->h = h;
-    t->tw = pot(w);
-    t->th = pot(h);
-    if (t->tw > c->max_texture_size || t->th > c->max_texture_size)
-        return jd_fail(err, JD_ERR_UNSUPPORTED, "%s target %dx%d exceeds the max texture size %d", what, t->tw,
-                       t->th, c->max_texture_size);
-    t->tex = jdr_new_texture(t->tw, t->th, linear ? GL_LINEAR : GL_NEAREST);
+    memset(t, 0, sizeof *t);
     glGenFramebuffers(1, &t->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
-    r->target_bytes += (size_t)t->tw * t->th * 4;
     if (with_depth) {
         glGenRenderbuffers(1, &t->depth);
-        glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, t->tw, t->th);
+        glBindRenderbuffer(GL_RENDERBUFFER, t->depth); /* a name becomes an object when bound */
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
-        r->target_bytes += (size_t)t->tw * t->th * 2;
     }
-    GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (st != GL_FRAMEBUFFER_COMPLETE)
-        return jd_fail(err, JD_ERR_GL, "%s framebuffer %dx%d is incomplete (0x%x)", what, w, h, st);
-    clear_whole();
-    return JD_OK;
+    return jdr_fit_target(r, t, w, h, linear, what, err);
 }
 
-/* The storage of a target that follows the picture's size (the frame
- * before the pass after it, full's levels' sum), made again for w x h where
- * that takes other powers of two: at start-up and at a resize, never in a
- * frame. Sized for the picture, not for the largest the budget allows: at
- * 1080p on a board whose tier draws 960x540 the frame's target is 1024 x
- * 1024, not 2048 x 2048 (25 MB of GPU memory, 6 here), and where nothing
- * goes through it (the display engine enlarging the picture) it keeps one
- * texel. w or h 0: not needed. A new texture, attached afresh (some
+/* A target's storage for w x h: made at start-up, and made again for the
+ * targets that follow the picture's size (the frame before the pass after
+ * it, full's levels' sum) at a resize where w x h takes other powers of
+ * two, never in a frame. Sized for the picture, not for the largest the
+ * budget allows: at 1080p on a board whose tier draws 960x540 the frame's
+ * target is 1024 x 1024, not 2048 x 2048 (25 MB of GPU memory, 6 here),
+ * and where nothing goes through it (the display engine enlarging the
+ * picture) it keeps one texel. w or h 0: not needed. A new texture, attached afresh (some
  * drivers mishandle a texture specified again while attached). */
 jd_result jdr_fit_target(jd_renderer *r, target *t, int w, int h, int linear, const char *what, jd_error *err)
 {
