@@ -20,9 +20,29 @@ pass=0 fail=0 notrun=0
 ok() { pass=$((pass + 1)); echo "ok   $1" | tee -a "$res"; }
 bad() { fail=$((fail + 1)); echo "FAIL $1" | tee -a "$res"; }
 now() { cut -d. -f1 /proc/uptime; }
+# The heartbeat tools/kms-test.sh watches: the guest's uptime every 5 s,
+# and beside it the processes the kernel holds waiting (state D) with where
+# it holds them, which the host reports should the checks stop moving.
+( while :; do
+    now > "$share/heartbeat"
+    for p in $(cat /proc/[0-9]*/stat 2>/dev/null | awk '$3 == "D" { print $1 }'); do
+        printf '%s (%s) at %s: %s\n' "$p" "$(cat /proc/$p/comm 2>/dev/null)" "$(now)" "$(tr '\n' ' ' < /proc/$p/stack 2>/dev/null | cut -c1-300)"
+    done > "$share/blocked"
+    sleep 5
+done ) &
+beating=$!
+# A second guest, after the first stood still (tools/kms-test.sh), finds
+# in the share the check that was under way and the time it has: the
+# checks before that one ran in the first guest.
+from=""
+if [ -s "$share/from" ]; then read -r from deadline < "$share/from"; fi
 # have SECONDS NAME: whether a check needing up to SECONDS can still end in
 # the guest's time; if not it is reported as not run.
 have() {
+    if [ -n "$from" ]; then
+        [ "$2" = "$from" ] || return 1
+        from=""
+    fi
     if [ $(( $(now) + $1 )) -le "$deadline" ]; then echo "  ($2: from $(now) s)" >> "$res"; return 0; fi
     notrun=$((notrun + 1))
     echo "not run: $2 (needs up to $1 s, the guest's time ends in $((deadline - $(now))) s)" | tee -a "$res"
@@ -60,6 +80,9 @@ modprobe uinput 2>/dev/null; modprobe evdev 2>/dev/null
 mount -t debugfs debugfs /sys/kernel/debug 2>/dev/null
 i=0
 while [ ! -e /dev/dri/card0 ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+# The kernel's functions and vkms's, for tools/kms-test.sh to name where
+# the CPUs are should the guest stand still.
+grep " [tT] " /proc/kallsyms > "$share/kallsyms" 2>/dev/null
 [ -e /dev/dri/card0 ] && ok "vkms loaded at $(now) s: $(cat /sys/class/drm/card0-*/status 2>/dev/null | tr '\n' ' ')(/dev/dri/card0)" ||
     { bad "no /dev/dri/card0"; exit 1; }
 state=/sys/kernel/debug/dri/0/state
@@ -239,6 +262,20 @@ fi
 # kernel's uevent is asked for by hand, as a real hotplug would send it.
 # hotplug NAME ARGS...: the kiosk with ARGS through it.
 force=$(ls -d /sys/kernel/debug/dri/0/Virtual-1 2>/dev/null)/force
+# forcing WHAT: writes WHAT to the connector's force file, at most 30 s.
+# Once in a local run the guest stood still right where the first write
+# was due (cause unknown): a write the kernel does not finish fails the
+# check instead of holding the guest.
+forcing() {
+    ( printf %s "$1" > "$force" ) &
+    fpid=$! i=0
+    while [ $i -lt 300 ] && alive $fpid; do sleep 0.1; i=$((i + 1)); done
+    if alive $fpid; then
+        bad "$h: writing '$1' to $force did not return in 30 s: state $(cut -d' ' -f3 /proc/$fpid/stat), stack $(tr '\n' ' ' < /proc/$fpid/stack 2>/dev/null | cut -c1-300)"
+        return 1
+    fi
+    wait $fpid
+}
 hotplug() {
     h=$1
     shift
@@ -246,19 +283,19 @@ hotplug() {
     pid=$!
     wait_for "$out/$h" "anti-aliasing" 120
     sleep 3
-    echo off > "$force" && echo change > /sys/class/drm/card0/uevent
+    forcing off && echo change > /sys/class/drm/card0/uevent
     # Under TCG on a loaded host a frame can take 25 s, and uevents are read
     # between frames.
     if wait_for "$out/$h" "the display went away" 90 && sleep 2 && kill -0 "$pid"; then
         ok "$h: unplugged: the kiosk waits: $(grep 'went away' "$out/$h")"
     else bad "$h: unplug: $(cat "$out/$h")"; fi
-    echo on > "$force" && echo change > /sys/class/drm/card0/uevent
+    forcing on && echo change > /sys/class/drm/card0/uevent
     if wait_for "$out/$h" "the display is back" 90 && wait_for "$out/$h" "set again" 90; then
         ok "$h: plugged back: $(grep -e 'is back' -e 'set again' "$out/$h" | tr '\n' ' ')"
     else bad "$h: plug back: $(cat "$out/$h")"; fi
     # The plane as the kernel has it now (its source and its place on the CRTC).
     sed -n '/^plane\[/,/^crtc\[/p' "$state" | grep -e 'src-pos=' -e 'crtc-pos=' | head -2 | tr -d '\t' | tr '\n' ' ' > "$out/${h}_plane"
-    printf unspecified > "$force" # 11 bytes: the kernel's buffer has no room for a newline too
+    forcing unspecified # 11 bytes: the kernel's buffer has no room for a newline too
     stop "$pid" "$h"
     rc=$?
     line=$(grep "^kiosk: [0-9]* frames" "$out/$h")
@@ -304,5 +341,6 @@ elif have 250 touch; then
     else bad "swipe: $(cat "$out/touch" "$out/touch_dev")"; fi
     restored touch
 fi
+kill "$beating" 2>/dev/null
 cp "$out"/* "$share"/ 2>/dev/null
 echo "kms guest: $pass passed, $fail failed, $notrun not run (at $(now) s)" | tee -a "$res"
