@@ -21,13 +21,14 @@ ok() { pass=$((pass + 1)); echo "ok   $1" | tee -a "$res"; }
 bad() { fail=$((fail + 1)); echo "FAIL $1" | tee -a "$res"; }
 now() { cut -d. -f1 /proc/uptime; }
 # The heartbeat tools/kms-test.sh watches: the guest's uptime every 5 s,
-# and beside it the processes the kernel holds waiting (state D) with where
-# it holds them, which the host reports should the checks stop moving.
+# and beside it the programs running (pid, name, state, the kernel function
+# each waits in), which the host reports should the checks stop moving.
 ( while :; do
     now > "$share/heartbeat"
-    for p in $(cat /proc/[0-9]*/stat 2>/dev/null | awk '$3 == "D" { print $1 }'); do
-        printf '%s (%s) at %s: %s\n' "$p" "$(cat /proc/$p/comm 2>/dev/null)" "$(now)" "$(tr '\n' ' ' < /proc/$p/stack 2>/dev/null | cut -c1-300)"
-    done > "$share/blocked"
+    { for d in /proc/[0-9]*; do
+        [ -e "$d/exe" ] || continue # kernel threads have no program
+        printf '%s %s %s %s, ' "${d#/proc/}" "$(cat "$d/comm")" "$(cut -d' ' -f3 "$d/stat" | head -c1)" "$(cat "$d/wchan")"
+    done; } > "$share/blocked" 2>/dev/null
     sleep 5
 done ) &
 beating=$!
@@ -271,7 +272,7 @@ forcing() {
     fpid=$! i=0
     while [ $i -lt 300 ] && alive $fpid; do sleep 0.1; i=$((i + 1)); done
     if alive $fpid; then
-        bad "$h: writing '$1' to $force did not return in 30 s: state $(cut -d' ' -f3 /proc/$fpid/stat), stack $(tr '\n' ' ' < /proc/$fpid/stack 2>/dev/null | cut -c1-300)"
+        bad "$h: writing '$1' to $force did not return in 30 s: state $(cut -d' ' -f3 /proc/$fpid/stat), waiting in $(cat /proc/$fpid/wchan 2>/dev/null)"
         return 1
     fi
     wait $fpid
