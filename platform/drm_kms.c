@@ -774,8 +774,23 @@ static jd_result drm_present(void *impl, jd_error *err)
         int rc = p->atomic ? atomic_commit(p, fb, 0, in_fence, p->p_out_fence ? &out_fence : NULL)
                            : drmModePageFlip(p->fd, p->crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, p);
         if (in_fence >= 0) {
+            int e = errno;
             close(in_fence); /* the kernel holds its own reference */
+            errno = e;
             p->in_fences += rc == 0;
+            if (rc != 0 && e == EINVAL) {
+                /* The plane refused the GPU's fence (a driver whose
+                 * IN_FENCE_FD path takes no fence EGL makes): the flip
+                 * without it, and every one from here on, said once. The
+                 * buffer's implicit fence still holds scan-out until the
+                 * GPU is done, as it does on the legacy path. */
+                rc = atomic_commit(p, fb, 0, -1, p->p_out_fence ? &out_fence : NULL);
+                if (rc == 0) {
+                    fprintf(stderr, "jade: %s: the plane refused the GPU's fence (%s): flips without it from here on\n",
+                            p->device, strerror(e));
+                    p->dup_fence = NULL;
+                }
+            }
         }
         if (rc != 0)
             return jd_fail(err, JD_ERR_PLATFORM, "%s: page flip failed: %s", p->device, strerror(errno));

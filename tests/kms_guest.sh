@@ -164,7 +164,7 @@ refusing() {
     shift 3
     bounded "$r_name" "$r_limit" env JADE_REFUSE="$r_what" LD_PRELOAD="$refuse" "$jade" kiosk --drm-device /dev/dri/card0 "$@"
 }
-if have 400 fallback; then
+if have 550 fallback; then
     if refusing no_atomic 150 cap $light --frames 4 &&
         grep -q "; legacy modesetting (the driver does not offer atomic modesetting);" "$out/no_atomic"; then flips no_atomic 4
     else bad "no atomic: $(cat "$out/no_atomic")"; fi
@@ -177,6 +177,16 @@ if have 400 fallback; then
     if refusing must_atomic 60 cap $light --frames 1 --atomic; then bad "--atomic ran without atomic"
     elif grep -q "does not offer atomic modesetting (--kms auto falls back to legacy)" "$out/must_atomic"; then ok "--atomic without it: $(head -1 "$out/must_atomic")"
     else bad "--atomic without it: $(cat "$out/must_atomic")"; fi
+    # A plane that refuses the GPU's fence (EGL made to offer native fences
+    # whose fds the kernel cannot take): the first flip is refused, made
+    # again without it, and every later one goes without, said once.
+    if refusing fence 150 fence $light --frames 4 && grep -q "fences: the GPU's to the plane" "$out/fence" &&
+        grep -q "the plane refused the GPU's fence (Invalid argument): flips without it from here on" "$out/fence" &&
+        grep -q "fences in 0 out 3" "$out/fence"; then
+        flips fence 4
+        ok "fence refused: $(grep -o "the plane refused[^;]*" "$out/fence"); $(grep -o 'fences in [0-9]* out [0-9]*' "$out/fence")"
+    else bad "fence refused: $(cat "$out/fence")"; fi
+    restored fence
 fi
 # What was chosen is what was asked.
 if have 200 choose; then

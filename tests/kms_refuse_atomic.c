@@ -2,12 +2,18 @@
  * make vkms look like the drivers jade must fall back on: JADE_REFUSE=cap
  * refuses atomic modesetting itself (DRM_CLIENT_CAP_ATOMIC, as a driver
  * without it answers), JADE_REFUSE=modeset refuses atomic commits that set
- * the mode (a driver whose atomic path rejects what jade asks). Everything
- * else goes to libdrm. Built as a shared object; Linux only. */
+ * the mode (a driver whose atomic path rejects what jade asks).
+ * JADE_REFUSE=fence makes EGL offer native fences (EGL_ANDROID_native_fence_sync,
+ * which the guest's software EGL lacks) whose fds are not fences at all
+ * (/dev/null), so the kernel refuses the flips that carry them as the
+ * plane's IN_FENCE_FD, as a driver refusing the GPU's fences would.
+ * Everything else goes to libdrm and EGL. Built as a shared object; Linux only. */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,4 +46,49 @@ int drmModeAtomicCommit(int fd, void *req, uint32_t flags, void *user_data)
     int (*real)(int, void *, uint32_t, void *) =
         (int (*)(int, void *, uint32_t, void *))dlsym(RTLD_NEXT, "drmModeAtomicCommit");
     return real ? real(fd, req, flags, user_data) : -1;
+}
+
+/* EGL, for JADE_REFUSE=fence: the extensions list with native fences, and
+ * the three functions jade looks up for them. */
+#define EGL_EXTENSIONS_NAME 0x3055 /* EGL_EXTENSIONS */
+
+const char *eglQueryString(void *dpy, int32_t name)
+{
+    const char *(*real)(void *, int32_t) = (const char *(*)(void *, int32_t))dlsym(RTLD_NEXT, "eglQueryString");
+    const char *s = real ? real(dpy, name) : NULL;
+    if (name != EGL_EXTENSIONS_NAME || !s || !refuses("fence")) return s;
+    static char more[8192];
+    snprintf(more, sizeof more, "%s EGL_KHR_fence_sync EGL_ANDROID_native_fence_sync", s);
+    return more;
+}
+
+static void *fake_create_sync(void *dpy, unsigned type, const int32_t *attribs)
+{
+    (void)dpy, (void)type, (void)attribs;
+    return (void *)1;
+}
+
+static unsigned fake_destroy_sync(void *dpy, void *sync)
+{
+    (void)dpy, (void)sync;
+    return 1;
+}
+
+static int fake_dup_fence(void *dpy, void *sync)
+{
+    (void)dpy, (void)sync;
+    return open("/dev/null", O_RDONLY | O_CLOEXEC);
+}
+
+typedef void (*any_fn)(void);
+
+any_fn eglGetProcAddress(const char *name)
+{
+    if (refuses("fence")) {
+        if (!strcmp(name, "eglCreateSyncKHR")) return (any_fn)fake_create_sync;
+        if (!strcmp(name, "eglDestroySyncKHR")) return (any_fn)fake_destroy_sync;
+        if (!strcmp(name, "eglDupNativeFenceFDANDROID")) return (any_fn)fake_dup_fence;
+    }
+    any_fn (*real)(const char *) = (any_fn(*)(const char *))dlsym(RTLD_NEXT, "eglGetProcAddress");
+    return real ? real(name) : NULL;
 }
