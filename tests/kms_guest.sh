@@ -274,9 +274,9 @@ fi
 # hotplug NAME ARGS...: the kiosk with ARGS through it.
 force=$(ls -d /sys/kernel/debug/dri/0/Virtual-1 2>/dev/null)/force
 # forcing WHAT: writes WHAT to the connector's force file, at most 30 s.
-# Once in a local run the guest stood still right where the first write
-# was due (cause unknown): a write the kernel does not finish fails the
-# check instead of holding the guest.
+# Once in a local run the checks stopped right where the first write was
+# due (cause unknown): a write the kernel does not finish fails the check
+# instead of holding the guest's shell.
 forcing() {
     ( printf %s "$1" > "$force" ) &
     fpid=$! i=0

@@ -104,14 +104,15 @@ rm -rf "$out"
 mkdir -p "$out"
 echo "kms-test: kernel $kver, vkms built here, $(basename "$jade") from $(dirname "$jade")"
 # The guest's heartbeat (its uptime, written to the share every 5 s) is
-# watched from here. Twice in CI the whole guest stood still: its own bound
-# on each check never fired and nothing reached its console, once while
-# the checks polled the 9p share and once between two kiosk runs. When the
-# heartbeat stops for 90 s, where the guest's CPUs are is recorded through
-# qemu's monitor (halted or running, and in which kernel function, named
-# by the guest's own /proc/kallsyms, which it copies to the share), then a
-# key press is sent, whose interrupt wakes a CPU that halted waiting for a
-# timer interrupt that never came. A guest that does not beat again within
+# watched from here. Twice in CI the guest's checks stopped with their own
+# bounds never firing and nothing on its console (once while they polled
+# the 9p share, once between two kiosk runs), and once here its shell was
+# held while the guest lived: whether the whole guest stood still then is
+# not known. When the heartbeat stops for 90 s, the kernel function each
+# CPU is in is recorded through qemu's monitor (named by the guest's own
+# /proc/kallsyms, which it copies to the share; native_safe_halt is an
+# idle CPU), then a key press is sent, whose interrupt would wake CPUs
+# halted for a timer interrupt that never came. A guest that does not beat again within
 # 60 s is stopped, and a second one runs the checks from the one that was
 # under way: the checks judge jade's kiosk, not qemu's emulation, and the
 # freeze is reported with where the CPUs were. One that stands still too
