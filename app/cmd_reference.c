@@ -29,7 +29,7 @@ int jd_cmd_reference(int argc, char **argv)
 
     jd_ref_desc d = {.mesh = &s.mesh, .scene = o.scene, .width = o.width, .height = o.height,
                      .samples = (uint32_t)o.samples, .error = o.ref_error, .window_mm = o.window_mm,
-                     .pixel_samples = o.pixel_samples,
+                     .pixel_samples = o.pixel_samples, .bounces = o.bounces,
                      .threads = o.threads, .progress = !o.quiet, .seed = (uint32_t)o.seed};
     size_t n = (size_t)o.width * o.height;
     float *linear = malloc(n * 3 * sizeof(float));
@@ -70,10 +70,12 @@ int jd_cmd_reference(int argc, char **argv)
            o.mask_out ? ", " : "", o.mask_out ? o.mask_out : "", o.width, o.height, o.material, s.mesh_path,
            jd_session_triangles(&s, tri, sizeof tri));
     printf("%u samples (%.3f mm apart over %.0f mm^2; %u carry light across a thin part), window %.2f mm, %d "
-           "threads; irradiance %.0f ms, octree %.0f ms, pixels %.0f ms (%ld on the object, %.0f kernel evaluations "
-           "each)\n",
+           "threads; irradiance %.0f ms, octree %.0f ms, ",
            st.samples, st.spacing_mm, st.surface_mm2, st.carried, st.window_mm, st.threads, st.irradiance_ms,
-           st.tree_ms, st.pixels_ms, st.object_pixels, st.evals_per_pixel);
+           st.tree_ms);
+    if (o.bounces) printf("light between parts %.0f ms (%d bounce%s), ", st.bounce_ms, o.bounces, o.bounces > 1 ? "s" : "");
+    printf("pixels %.0f ms (%ld on the object, %.0f kernel evaluations each)\n", st.pixels_ms, st.object_pixels,
+           st.evals_per_pixel);
     rc = 0;
 done:
     jd_ref_destroy(ref);

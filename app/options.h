@@ -24,6 +24,7 @@ typedef struct jd_options {
     int samples, threads, seed, quiet;
     float ref_error, window_mm;
     int pixel_samples;
+    int bounces;            /* jade reference: inter-reflection rounds */
     const char *drm_device, *connector, *display_mode;
     int rotation;
     int kms;           /* kiosk: jd_kms_api (platform.h) */

@@ -45,6 +45,7 @@ struct jd_ref {
     float light[3];
     float f0, fresnel_norm; /* Schlick F0 and the hemispherical mean of its transmittance */
     jd_ref_stats st;
+    float *ind;          /* per sample, the light other parts of the object send it (desc.bounces), or NULL */
 };
 
 /* ---- work spread over threads --------------------------------------- */
@@ -267,11 +268,107 @@ static void irr_chunk(void *ctx, long b, long e, uint64_t *evals)
         float pw[3], n[3], ng[3], ei[3];
         for (int k = 0; k < 3; k++) { pw[k] = p->p[k]; n[k] = r->pt_n[6 * i + k]; ng[k] = r->pt_n[6 * i + 3 + k]; }
         irradiance(r, pw, n, ng, ei);
+        if (r->ind)
+            for (int k = 0; k < 3; k++) ei[k] += r->ind[3 * i + k];
         for (int k = 0; k < 3; k++) {
             p->ea[k] = ei[k] * p->area * (r->pt_alb ? r->pt_alb[3 * i + k] : 1.0f);
             p->p[k] = pw[k] * r->mm_per_world; /* the octree works in millimetres */
         }
         if (!r->d.half_space) carry_across(r, pw, n, p, &r->pts[((irr_ctx *)ctx)->n + i]);
+    }
+}
+
+static uint32_t exitance(const jd_ref *r, const float x[3], const float e[3], float out[3]);
+
+/* The surface point a ray hit (p, its normal n and geometric normal ng)
+ * and the light leaving it, Mo in its colour where the model has colours
+ * (no Fresnel: the caller's direction decides it). Returns the kernel
+ * evaluations it took. */
+static uint32_t hit_exitance(const jd_ref *r, const jd_hit *hit, float p[3], float n[3], float ng[3], float mo[3])
+{
+    float ev[3], xm[3];
+    surface_at(r, hit->tri, hit->u, hit->v, p, n, ng);
+    irradiance(r, p, n, ng, ev);
+    for (int k = 0; k < 3; k++) xm[k] = p[k] * r->mm_per_world;
+    uint32_t evals = exitance(r, xm, ev, mo);
+    if (r->d.mesh->colors) {
+        float fo[3];
+        albedo_factor(r, hit->tri, hit->u, hit->v, fo);
+        for (int k = 0; k < 3; k++) mo[k] *= fo[k];
+    }
+    return evals;
+}
+
+/* The samples' irradiance (irr_chunk), the carried points packed behind
+ * the samples, and the octrees over both, made anew. */
+static jd_result light_samples(jd_ref *r, uint32_t n, float error, int progress, jd_error *err)
+{
+    irr_ctx ic = {r, n};
+    double t0 = jd_clock_ms();
+    par_run(r->st.threads, n, 2048, irr_chunk, &ic, "irradiance", progress);
+    if (!r->d.half_space) {
+        uint32_t all = n;
+        for (uint32_t i = n; i < 2 * n; i++)
+            if (r->pts[i].thick > 0) r->pts[all++] = r->pts[i];
+        r->st.carried = all - n;
+    }
+    double t1 = jd_clock_ms();
+    r->st.irradiance_ms += t1 - t0;
+    jd_diffusion_free(&r->diff);
+    jd_diffusion_free(&r->carry);
+    jd_result res = jd_diffusion_build(&r->diff, r->pts, n, &r->dp, (float)r->st.window_mm, error, 0, err);
+    /* The carried light's profile is as wide as the part is thick and has
+     * no peak: a node may stand for its points at 4 times the bound (bunny,
+     * 256x256, skin1 back-lit: 0.0003 RMSE from the same bound, pixels
+     * 6.1 s -> 3.6 s). */
+    if (!res && r->st.carried)
+        res = jd_diffusion_build(&r->carry, r->pts + n, r->st.carried, &r->dp, (float)r->st.window_mm, 4.0f * error, 1,
+                                 err);
+    r->st.tree_ms += jd_clock_ms() - t1;
+    return res;
+}
+
+/* The light the object's own surface sends each sample (inter-reflection):
+ * JD_BOUNCE_RAYS rays over its outer hemisphere, cosine-distributed (a
+ * spiral turned by a hash of the sample), each taking the exitance where it
+ * meets the object again as the camera would see it there (the octrees as
+ * they stand: each round adds one more bounce) and entering as the light
+ * does, through the boundary at its angle. Air, not the medium, between:
+ * the light leaves one part and enters another, as in a path tracer; the
+ * dipole's straight distances never see it. */
+enum { JD_BOUNCE_RAYS = 8 };
+typedef struct bounce_ctx { jd_ref *r; const jd_ref_point *placed; } bounce_ctx;
+static void bounce_chunk(void *ctx, long b, long e, uint64_t *evals)
+{
+    bounce_ctx *c = ctx;
+    jd_ref *r = c->r;
+    for (long i = b; i < e; i++) {
+        const float *p = c->placed[i].p, *n = r->pt_n + 6 * i, *ng = r->pt_n + 6 * i + 3;
+        float t[3], bt[3], a[3] = {fabsf(n[0]) < 0.9f ? 1.0f : 0.0f, fabsf(n[0]) < 0.9f ? 0.0f : 1.0f, 0.0f};
+        t[0] = a[1] * n[2] - a[2] * n[1], t[1] = a[2] * n[0] - a[0] * n[2], t[2] = a[0] * n[1] - a[1] * n[0];
+        normalize3(t);
+        bt[0] = n[1] * t[2] - n[2] * t[1], bt[1] = n[2] * t[0] - n[0] * t[2], bt[2] = n[0] * t[1] - n[1] * t[0];
+        /* Leave on the outer side of the true surface. */
+        float side = dot3(ng, n) >= 0 ? 1.0f : -1.0f, o[3], acc[3] = {0, 0, 0};
+        for (int k = 0; k < 3; k++) o[k] = p[k] + side * r->eps * ng[k];
+        float turn = (float)((uint32_t)i * 2654435761u) * (1.0f / 4294967296.0f);
+        for (int s = 0; s < JD_BOUNCE_RAYS; s++) {
+            float u1 = (s + 0.5f) / JD_BOUNCE_RAYS, u2 = fmodf(s * 0.618034f + turn, 1.0f);
+            float rr = sqrtf(u1), ph = 6.2831853f * u2, cz = sqrtf(1.0f - u1), d[3];
+            for (int k = 0; k < 3; k++) d[k] = (t[k] * cosf(ph) + bt[k] * sinf(ph)) * rr + n[k] * cz;
+            jd_hit hit;
+            if (!jd_bvh_intersect(&r->bvh, o, d, 0.0f, 1e30f, &hit)) continue;
+            float q[3], nq[3], ngq[3], mo[3];
+            *evals += hit_exitance(r, &hit, q, nq, ngq, mo);
+            float cq = -dot3(d, nq);
+            if (cq <= 0) continue; /* the inside of a face: an open mesh's, or normals that disagree */
+            /* Out of the medium there (as pixel_ray sees it) and into it here. */
+            float f = fresnel_t(r, cq) * fresnel_t(r, cz) / (r->fresnel_norm * r->fresnel_norm);
+            for (int k = 0; k < 3; k++) acc[k] += mo[k] * f;
+        }
+        /* Read by the next round's irr_chunk only: the octrees queried
+         * here hold this round's light already. */
+        for (int k = 0; k < 3; k++) r->ind[3 * i + k] = acc[k] / JD_BOUNCE_RAYS;
     }
 }
 
@@ -391,29 +488,32 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     r->st.window_mm = desc->window_mm > 0 ? desc->window_mm : fmax(2.5, 3.0 * r->st.spacing_mm);
     r->st.setup_ms = jd_clock_ms() - t0;
 
-    double t1 = jd_clock_ms();
-    irr_ctx ic = {r, n};
-    par_run(r->st.threads, n, 2048, irr_chunk, &ic, "irradiance", desc->progress);
-    if (!desc->half_space) { /* the carried points that carry light, packed behind the samples */
-        uint32_t all = n;
-        for (uint32_t i = n; i < 2 * n; i++)
-            if (r->pts[i].thick > 0) r->pts[all++] = r->pts[i];
-        r->st.carried = all - n;
+    /* The samples' world positions, kept where the object's light on
+     * itself is asked for: the octrees reorder the points, and each round
+     * lights them again from there. */
+    jd_ref_point *placed = NULL;
+    if (desc->bounces > 0) {
+        placed = malloc(sizeof *placed * n);
+        r->ind = calloc(3 * (size_t)n, sizeof *r->ind);
+        if (!placed || !r->ind) {
+            free(placed);
+            jd_ref_destroy(r);
+            return jd_fail(err, JD_ERR_BUDGET, "out of memory for the light of %u samples on each other", n);
+        }
+        memcpy(placed, r->pts, sizeof *placed * n);
     }
-    r->st.irradiance_ms = jd_clock_ms() - t1;
-
-    double t2 = jd_clock_ms();
     float error = desc->error > 0 ? desc->error : 0.01f;
-    res = jd_diffusion_build(&r->diff, r->pts, n, &r->dp, (float)r->st.window_mm, error, 0, err);
-    /* The carried light's profile is as wide as the part is thick and has
-     * no peak: a node may stand for its points at 4 times the bound (bunny,
-     * 256x256, skin1 back-lit: 0.0003 RMSE from the same bound, pixels
-     * 6.1 s -> 3.6 s). */
-    if (!res && r->st.carried)
-        res = jd_diffusion_build(&r->carry, r->pts + n, r->st.carried, &r->dp, (float)r->st.window_mm, 4.0f * error, 1,
-                                 err);
+    for (int round = 0;; round++) {
+        res = light_samples(r, n, error, desc->progress, err);
+        if (res || round >= desc->bounces) break;
+        double t2 = jd_clock_ms();
+        bounce_ctx bc = {r, placed};
+        par_run(r->st.threads, n, 512, bounce_chunk, &bc, "light between parts", desc->progress);
+        memcpy(r->pts, placed, sizeof *placed * n);
+        r->st.bounce_ms += jd_clock_ms() - t2;
+    }
+    free(placed);
     if (res) { jd_ref_destroy(r); return res; }
-    r->st.tree_ms = jd_clock_ms() - t2;
     if (stats) *stats = r->st;
     *out = r;
     return JD_OK;
@@ -438,7 +538,7 @@ void jd_ref_destroy(jd_ref *r)
     jd_diffusion_free(&r->diff);
     jd_diffusion_free(&r->carry);
     jd_bvh_free(&r->bvh);
-    free(r->pos); free(r->nrm); free(r->tri); free(r->pts); free(r->pt_n); free(r->pt_alb);
+    free(r->pos); free(r->nrm); free(r->tri); free(r->pts); free(r->pt_n); free(r->pt_alb); free(r->ind);
     free(r);
 }
 
@@ -484,16 +584,8 @@ static int pixel_ray(px_ctx *c, float fx, float fy, float o[3], uint64_t *evals)
         memcpy(o, c->bg, sizeof c->bg);
         return 0;
     }
-    float p[3], n[3], ng[3], ev[3], xm[3], mo[3];
-    surface_at(r, hit.tri, hit.u, hit.v, p, n, ng);
-    irradiance(r, p, n, ng, ev);
-    for (int k = 0; k < 3; k++) xm[k] = p[k] * r->mm_per_world;
-    *evals += exitance(r, xm, ev, mo);
-    if (r->d.mesh->colors) {
-        float fo[3];
-        albedo_factor(r, hit.tri, hit.u, hit.v, fo);
-        for (int k = 0; k < 3; k++) mo[k] *= fo[k];
-    }
+    float p[3], n[3], ng[3], mo[3];
+    *evals += hit_exitance(r, &hit, p, n, ng, mo);
     /* Seen from the camera's side, as jade's shader does. */
     float v[3] = {-dir[0], -dir[1], -dir[2]}, nv[3];
     float sgn = dot3(n, v) < 0 ? -1.0f : 1.0f;

@@ -34,6 +34,8 @@ typedef struct jd_ref_desc {
     uint32_t seed;           /* sample placement */
     int half_space;          /* every sample as if on a half-space (the dipole alone, no light carried
                                 across thin parts, ref_slab.h): the reference before 2026-11-25 */
+    int bounces;             /* [0] times the light the object gives out falls on it again and enters
+                                (inter-reflection through the air between its parts; 8 rays a sample) */
     /* Tests: replaces the light's irradiance (world position, outward normal). */
     void (*irradiance)(void *user, const float p[3], const float n[3], float e[3]);
     void *user;
@@ -43,7 +45,7 @@ typedef struct jd_ref_stats {
     uint32_t samples;
     uint32_t carried;        /* samples whose light also leaves the far side of a thin part */
     double spacing_mm, window_mm, surface_mm2, mm_per_world;
-    double setup_ms, irradiance_ms, tree_ms, pixels_ms;
+    double setup_ms, irradiance_ms, tree_ms, bounce_ms, pixels_ms;
     double evals_per_pixel;
     long object_pixels;
     int threads;

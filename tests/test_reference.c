@@ -17,7 +17,11 @@
  *   6. the half-space's exact albedo, for diffuse light and for a beam,
  *      index-matched and behind a Fresnel boundary, against a Monte Carlo
  *      walk of the same medium written here; the renderer's table of it
- *      (jd_albedo_ratio) against the solution between its points.
+ *      (jd_albedo_ratio) against the solution between its points;
+ *   7. light between parts (jd_ref_desc.bounces): two plates facing each
+ *      other, one lit: what the dark one takes from the lit one's exitance
+ *      against the same exitance integrated over the lit plate here (view
+ *      factor and both boundaries), within 4%.
  * Usage: test_reference ASSET.drc (the project's default asset). */
 #include <math.h>
 #include <stdio.h>
@@ -276,6 +280,106 @@ static void test_thin_slab(const char *material)
     jd_ref_destroy(r);
 }
 
+/* Two plates facing each other across a gap of PLATE_GAP mm: A at z = 0
+ * facing up, B above it facing down (open sheets, 100 mm square). */
+#define PLATE_GAP 10.0f
+#define PCELLS 60
+static float plate_pos[2 * (PCELLS + 1) * (PCELLS + 1) * 3], plate_nrm[2 * (PCELLS + 1) * (PCELLS + 1) * 3];
+static uint32_t plate_idx[2 * PCELLS * PCELLS * 6];
+
+static void make_plates(jd_mesh *m)
+{
+    int k = 0, t = 0;
+    for (int f = 0; f < 2; f++) {
+        int base = k;
+        for (int j = 0; j <= PCELLS; j++)
+            for (int i = 0; i <= PCELLS; i++, k++) {
+                plate_pos[3 * k] = -HALF_MM + 2 * HALF_MM * i / PCELLS;
+                plate_pos[3 * k + 1] = -HALF_MM + 2 * HALF_MM * j / PCELLS;
+                plate_pos[3 * k + 2] = f ? PLATE_GAP : 0.0f;
+                plate_nrm[3 * k] = 0; plate_nrm[3 * k + 1] = 0; plate_nrm[3 * k + 2] = f ? -1.0f : 1.0f;
+            }
+        for (int j = 0; j < PCELLS; j++)
+            for (int i = 0; i < PCELLS; i++) {
+                uint32_t a = base + j * (PCELLS + 1) + i, b = a + 1, c = a + PCELLS + 1, d = c + 1;
+                uint32_t q[2][6] = {{a, b, d, a, d, c}, {a, d, b, a, c, d}}; /* B wound the other way */
+                memcpy(plate_idx + t, q[f], sizeof q[f]);
+                t += 6;
+            }
+    }
+    memset(m, 0, sizeof *m);
+    m->num_vertices = (uint32_t)k;
+    m->num_indices = (uint32_t)t;
+    m->positions = plate_pos;
+    m->normals = plate_nrm;
+    m->indices = plate_idx;
+    m->index_size = 4;
+    jd_mesh_compute_bounds(m);
+}
+
+/* Light on B's face alone. */
+static void plate_light(void *user, const float p[3], const float n[3], float e[3])
+{
+    (void)user; (void)p;
+    e[0] = e[1] = e[2] = n[2] < 0 ? 1.0f : 0.0f;
+}
+
+static double schlick_t(double c) { return 1.0 - pow(1.0 - c, 5.0); } /* eta 1: F0 = 0 */
+
+static void test_bounce(const char *material)
+{
+    jd_mesh m;
+    make_plates(&m);
+    const jd_material *mat = jd_material_find(material);
+    jd_ref *r[2] = {NULL, NULL};
+    for (int b = 0; b < 2; b++) {
+        /* half-space: nothing carried across (the plates are open sheets anyway) */
+        jd_ref_desc d = {.mesh = &m, .width = 1, .height = 1, .irradiance = plate_light, .half_space = 1, .bounces = b,
+                         .samples = 30000};
+        jd_scene_defaults(&d.scene, mat);
+        d.scene.mm_per_unit = 1.0f;
+        d.scene.eta = 1.0f;
+        jd_error err = {0};
+        jd_ref_stats st;
+        CHECK(!jd_ref_create(&d, &r[b], &st, &err), "reference for two %s plates (%d bounces): %s", material, b, err.msg);
+        if (!r[b]) { jd_ref_destroy(r[0]); return; }
+    }
+    /* jade's world: the box's centre at 0, its half-diagonal 1. */
+    double half = sqrt(2.0 * HALF_MM * HALF_MM + 0.25 * PLATE_GAP * PLATE_GAP), fn = 20.0 / 21.0;
+    jd_dipole dp;
+    jd_dipole_init(&dp, mat->sigma_s, mat->sigma_a, 1.0f, 1.0f);
+    /* What A's centre takes from B: B's exitance (without bounces) over
+     * its face, each element seen at distance s at cosine c = gap / s on
+     * both plates: M c^2 / (pi s^2) dA, out of B and into A through the
+     * boundary as the reference does it (Schlick, normalised). */
+    double want[3] = {0, 0, 0};
+    const int q = 200;
+    const double h = 2.0 * HALF_MM / q;
+    for (int j = 0; j < q; j++)
+        for (int i = 0; i < q; i++) {
+            double x = -HALF_MM + (i + 0.5) * h, y = -HALF_MM + (j + 0.5) * h, s2 = x * x + y * y + PLATE_GAP * PLATE_GAP;
+            double c = PLATE_GAP / sqrt(s2), k = schlick_t(c) * schlick_t(c) / (fn * fn) * c * c / (M_PI * s2) * h * h;
+            float p[3] = {(float)(x / half), (float)(y / half), (float)(0.5 * PLATE_GAP / half)}, n[3] = {0, 0, -1}, mo[3];
+            jd_ref_exitance(r[0], p, n, mo);
+            for (int ch = 0; ch < 3; ch++) want[ch] += k * mo[ch];
+        }
+    double worst = 0;
+    float p[3] = {0, 0, (float)(-0.5 * PLATE_GAP / half)}, n[3] = {0, 0, 1}, m0[3], m1[3];
+    jd_ref_exitance(r[0], p, n, m0);
+    jd_ref_exitance(r[1], p, n, m1);
+    for (int c = 0; c < 3; c++) {
+        /* The light A took in leaves it again as from uniform light: Rd. */
+        double got = (m1[c] - m0[c]) / dp.rd_total[c], e = fabs(got / want[c] - 1);
+        if (e > worst) worst = e;
+        printf("  %s, channel %d: A's centre takes %.5f of B's light (exitance %.5f -> %.5f), integrated %.5f\n",
+               material, c, got, m0[c], m1[c], want[c]);
+    }
+    CHECK(worst < 0.04, "two %s plates: the light between them within 4%% of the integral (largest %.2f%%)", material,
+          worst * 100);
+    jd_ref_destroy(r[0]);
+    jd_ref_destroy(r[1]);
+}
+
 /* The beam (Gaussian, width b) convolved with Rd, at distance x from its
  * centre: polar integration out to 6 b, fine enough to be exact here. */
 static double beam_profile(const jd_dipole *dp, int c, double x, double b)
@@ -519,6 +623,9 @@ int main(int argc, char **argv)
     printf("thin slab (%.0f mm, 100 mm square) lit on one face:\n", THIN_D);
     test_thin_slab("marble");
     test_thin_slab("skin1");
+    printf("two plates %.0f mm apart, one lit: the light between them:\n", PLATE_GAP);
+    test_bounce("skin1");
+    test_bounce("marble");
     printf("Gaussian beam of 1 mm width on the same patch:\n");
     test_profile(&slab, "marble");
     test_profile(&slab, "skin1");
