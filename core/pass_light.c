@@ -259,13 +259,13 @@ void jdr_pass_diffusion(jd_renderer *r, const jd_scene *s, const frame_params *f
     }
 }
 
-/* full's exponential shadow map's exponent per light-depth unit: 0.35 per
+/* full's exponential shadow map's exponent per light-depth unit: 0.25 per
  * texel of depth (light.glsl, jd_soft_lit, whose slack of a texel, the
- * - 0.35 in mesh.vert, is this exponent times a texel: change them
+ * - 0.25 in mesh.vert, is this exponent times a texel: change them
  * together). */
 float jdr_soft_c(const jd_renderer *r)
 {
-    return 0.35f * (float)r->d.light_map_size;
+    return 0.25f * (float)r->d.light_map_size;
 }
 
 /* The texels of a light-space target of n x n that the light map's proxy

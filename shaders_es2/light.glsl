@@ -74,12 +74,16 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
 
 // full's shadow test: the exponential shadow map (soft_shadow.frag) read at
 // the point p (light-map xy; z its depth, not moved towards the light: the
-// exponential is its own slack, as the exponent z c - 0.35, which the
+// exponential is its own slack, as the exponent z c - 0.25, which the
 // vertex stage gives). c: exp2's exponent per light-depth unit,
-// 0.35 per texel of depth, soft enough that the stair steps of the light
+// 0.25 per texel of depth, soft enough that the stair steps of the light
 // map's texels do not show at a shallow angle, sharp enough that an
-// occluder 10 texels in front keeps 9% of the light; the point is taken a
-// texel nearer the light (exp2(0.35)), or a crease's own walls darken it.
+// occluder 20 texels in front keeps 4% of the light (10 texels: 21%); the
+// point is taken a texel nearer the light (exp2(0.25)), or a crease's own
+// walls darken it. At 0.35 a texel the edge of a cast shadow strayed more:
+// the lit taps of the blur lie at other depths than the point on a floor
+// slanted to the light, and exp2 weighs the deeper ones more by where the
+// edge falls among the texels (docs/quality.md, "Artifacts, measured").
 // Declared in both stages at one precision, as GLSL ES asks of a uniform
 // they share.
 uniform mediump vec2 u_soft_c; // c and c / 255: the two bytes' weights

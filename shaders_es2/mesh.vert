@@ -158,7 +158,7 @@ void main()
     // (light.glsl, jd_soft_lit): scaled and offset here, not per fragment;
     // full moves no depth towards the light (the bias below is the 2x2
     // test's).
-    v_shadow.z = sp.z * u_soft_c.x - 0.350;
+    v_shadow.z = sp.z * u_soft_c.x - 0.250;
 #else
     // The light looks down its +z: a normal facing it has a negative z there.
     float cl = clamp(abs(2.0 * (u_light_tex * vec4(an, 0.0)).z), 0.2, 1.0);

@@ -38,8 +38,9 @@ echo "jerk (RMS of the second difference between frames, linear luminance): refe
 if awk -v r="$ref" -v n="$none" 'BEGIN { exit !(r != "" && r < n) }'; then ok "the reference is smoother than none ($ref < $none)"
 else bad "the reference ($ref) is not smoother than none ($none): the measure sees nothing"; fi
 # 0.0144 measured since full's soft shadow (light.glsl, jd_soft_lit; 0.0151
-# with the 2x2 test before it): the goal, the reference's, is missed
-# (docs/quality.md); the bound keeps it from growing unseen.
-if awk -v f="$full" 'BEGIN { exit !(f != "" && f <= 0.0158) }'; then ok "full's jerk $full <= 0.0158 (measured 0.0144)"
-else bad "full's jerk $full, over 0.0158 (measured 0.0144; the reference $ref)"; fi
+# with the 2x2 test before it), 0.0137 since its exponent is 0.25 a texel
+# of depth: the goal, the reference's, is missed (docs/quality.md); the
+# bound keeps it from growing unseen.
+if awk -v f="$full" 'BEGIN { exit !(f != "" && f <= 0.0151) }'; then ok "full's jerk $full <= 0.0151 (measured 0.0137)"
+else bad "full's jerk $full, over 0.0151 (measured 0.0137; the reference $ref)"; fi
 finish flicker

@@ -68,13 +68,17 @@ for az in -60 -75 dense-60; do
         # mali400 profile 1.92 / 0.120, 1.97 / 0.127, 1.91 / 0.121; since
         # the local part keeps the same share, 2.21 / 0.106, 2.19 / 0.108
         # and 2.22 / 0.105, mali400 2.24 / 0.116, 2.30 / 0.122, 2.24 /
-        # 0.118 (docs/quality.md).
+        # 0.118 (docs/quality.md). Since the shadow map's exponent is 0.25
+        # a texel of depth, not 0.35 (light.glsl, jd_soft_lit): 2.36 /
+        # 0.083, 2.39 / 0.109, 2.36 / 0.081, mali400 2.39 / 0.094, 2.48 /
+        # 0.117, 2.40 / 0.095: the stray's goal met in all six; the bound
+        # is the worst of them with a tenth to spare.
         if awk -v w="$w" -v r="$rw" 'BEGIN { exit !(w >= 0.67 * r && w <= 1.33 * r) }'; then ok "$p: edge $w mm wide, the reference's $rw"
         else bad "$p: edge $w mm wide, the reference's $rw (the goal: within a third)"; fi
-        if awk -v s="$s" 'BEGIN { exit !(s <= 0.14) }'; then
+        if awk -v s="$s" 'BEGIN { exit !(s <= 0.13) }'; then
             if awk -v s="$s" -v r="$rs" -v mm="$mm" 'BEGIN { exit !(s <= r + 0.1 * mm) }'; then ok "$p: the edge strays $s mm, the reference's $rs"
-            else ok "$p: the edge strays $s mm, within today's 0.14 (the goal: the reference's $rs plus a tenth of a pixel)"; fi
-        else bad "$p: the edge strays $s mm from a straight line, over today's 0.14 (the reference's $rs): stair steps"; fi
+            else ok "$p: the edge strays $s mm, within today's 0.13 (the goal: the reference's $rs plus a tenth of a pixel)"; fi
+        else bad "$p: the edge strays $s mm from a straight line, over today's 0.13 (the reference's $rs): stair steps"; fi
     done
 done
 finish shadow_edge
