@@ -14,9 +14,11 @@
 # about 90 s a case at 128x128 and 1024 samples on 2 cores): on demand, never
 # by the tests. KEEP=1 reuses Cycles pictures already in OUT_DIR; BOUNDARY=walk
 # renders Cycles' random-walk subsurface scattering instead of the matched
-# medium (tools/cycles-reference.sh --boundary).
+# medium (tools/cycles-reference.sh --boundary); MESH=FILE holds another mesh
+# to the same cases (the held-out meshes of ../shared, say), MATERIALS the
+# materials to take.
 #
-#   SIZE=128x128 SAMPLES=1024 [BOUNDARY=walk] tools/cycles-table.sh [OUT_DIR]   (default build/cycles)
+#   SIZE=128x128 SAMPLES=1024 [BOUNDARY=walk] [MESH=FILE] tools/cycles-table.sh [OUT_DIR]   (default build/cycles)
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${BUILD:-$root/build}
@@ -25,9 +27,9 @@ size=${SIZE:-128x128}
 samples=${SAMPLES:-1024}
 boundary=${BOUNDARY:-matched}
 jade=$build/jade
-bunny=$root/../shared/testdata/meshes/stanford-bunny.obj
+bunny=${MESH:-$root/../shared/testdata/meshes/stanford-bunny.obj}
 [ -x "$jade" ] || { echo "cycles-table: $jade is not built" >&2; exit 1; }
-[ -f "$bunny" ] || { echo "cycles-table: needs $bunny (../shared)" >&2; exit 1; }
+[ -f "$bunny" ] || { echo "cycles-table: needs $bunny (../shared, or MESH=FILE)" >&2; exit 1; }
 mkdir -p "$out"
 field() { sed -n "s/.*\"$1\": \([-0-9.e]*\).*/\1/p"; }
 common="--eta 1 --ambient 0 --specular 0"
