@@ -32,7 +32,6 @@ measure_seq() {
     # shellcheck disable=SC2046
     "$measure" "$tmp/mask.png" $(i=0; while [ $i -lt 60 ]; do echo "$tmp/$1$i.png"; i=$((i + 1)); done)
 }
-field() { sed -n "s/.*\"$1\": \([0-9.]*\).*/\1/p"; }
 m_ref=$(measure_seq ref) m_none=$(measure_seq none) m_full=$(measure_seq full)
 ref=$(echo "$m_ref" | field jerk) none=$(echo "$m_none" | field jerk) full=$(echo "$m_full" | field jerk)
 echo "jerk (RMS of the second difference between frames, linear luminance): reference $ref, none $none, full $full"

@@ -7,6 +7,9 @@ pass=0 fail=0
 ok() { pass=$((pass + 1)); echo "ok   $1"; }
 bad() { fail=$((fail + 1)); echo "FAIL $1"; }
 finish() { echo "$1: $pass passed, $fail failed"; [ "$fail" -eq 0 ]; }
+# A number from the one-line JSON on stdin (jade metric, bench, the
+# measuring tools): `field KEY`.
+field() { sed -n "s/.*\"$1\": \([-0-9.e]*\).*/\1/p"; }
 # Tests that preload a library into jade (gl_count, gl_sabotage): ASan
 # must come first in a sanitized build, so they skip there.
 preload_or_skip() {

@@ -18,7 +18,7 @@ jade=$1 measure=$2
 awk -f "$(dirname "$0")/wall.awk" > "$tmp/wall.obj"
 awk -v dense=1 -f "$(dirname "$0")/wall.awk" > "$tmp/wall_dense.obj"
 mm=$(awk 'BEGIN { printf "%.4f", 100 / 147 }')
-field() { sed -n "s/.*\"$2\": \([0-9.]*\).*/\1/p" "$tmp/$1.json"; }
+edge() { field "$2" < "$tmp/$1.json"; }
 # The same walls gridded at 2 mm on every face (wall.awk, dense=1), against
 # the -60 degree reference (the same surfaces): full's edge must not depend
 # on how finely the mesh is cut. It did, until the light map's proxy kept
@@ -44,13 +44,13 @@ for az in -60 -75 dense-60; do
     for p in ref none full mali; do
         "$measure" "$tmp/$p$az.png" 80 170 60 135 "$mm" > "$tmp/$p$az.json" || bad "no edge measured in $p (light azimuth $az)"
     done
-    rw=$(field ref$az width_mm) rs=$(field ref$az stray_mm) nw=$(field none$az width_mm)
-    echo "light azimuth $az ($mesh.obj): width / stray in mm: reference $rw / $rs, none $nw / $(field none$az stray_mm)," \
-         "full $(field full$az width_mm) / $(field full$az stray_mm), full on mali400 $(field mali$az width_mm) / $(field mali$az stray_mm)"
+    rw=$(edge ref$az width_mm) rs=$(edge ref$az stray_mm) nw=$(edge none$az width_mm)
+    echo "light azimuth $az ($mesh.obj): width / stray in mm: reference $rw / $rs, none $nw / $(edge none$az stray_mm)," \
+         "full $(edge full$az width_mm) / $(edge full$az stray_mm), full on mali400 $(edge mali$az width_mm) / $(edge mali$az stray_mm)"
     if awk -v n="$nw" -v r="$rw" 'BEGIN { exit !(n < 0.75 * r) }'; then ok "none's edge is sharper than the reference's ($nw < $rw mm)"
     else bad "none's edge $nw mm is not sharper than the reference's $rw mm: the measure sees no diffusion"; fi
     for p in full mali; do
-        w=$(field $p$az width_mm) s=$(field $p$az stray_mm)
+        w=$(edge $p$az width_mm) s=$(edge $p$az stray_mm)
         # The goal: as soft as the reference within a third either way, and
         # no steps (straying no more than the reference's own line, plus a
         # tenth of a pixel). full's exponential shadow map (light.glsl,

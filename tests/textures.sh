@@ -13,7 +13,6 @@
 # pebble quantized as gltfpack writes it draws as the float one.
 jade=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") assets=$2 gen_textured=${3:-}
 . "$(dirname "$0")/harness.sh"
-field() { sed -n "s/.*\"$1\": \([-0-9.e]*\).*/\1/p"; }
 render() { out=$1; shift; "$jade" render --size 96x96 --out "$out" "$@" >"$tmp/out" 2>&1; }
 peb=$assets/textured
 cp "$peb/pebble.gltf" "$peb/pebble.obj" "$peb/pebble.mtl" "$peb/pebble.png" "$peb/pebble_colours.ply" "$tmp/"
