@@ -3,6 +3,8 @@
  * parent's checks of everything that comes back (records, indices, finite
  * attributes, the winding and normals that follow). A crash of libdraco
  * itself is the child's, reported as an error; any crash here is jade's. */
+/* mkstemps is not in C11: ask glibc for it. */
+#define _DEFAULT_SOURCE
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,15 +13,30 @@
 #include "arena.h"
 #include "mesh_load.h"
 
-static char path[64];
+static char path[4096];
 static void *memory;
 enum { BUDGET = 64 << 20 };
+
+/* The loader takes a path, so each input goes through one file. It is made
+ * with mkstemps (no name another user could have placed a link at first)
+ * and removed when libFuzzer exits: every CI run used to leave one behind. */
+static void remove_input(void)
+{
+    unlink(path);
+}
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    snprintf(path, sizeof path, "/tmp/jade-fuzz-mesh-%d.drc", (int)getpid());
+    const char *dir = getenv("TMPDIR");
+    if (!dir || !*dir) dir = "/tmp";
+    int n = snprintf(path, sizeof path, "%s/jade-fuzz-mesh-XXXXXX.drc", dir);
+    if (n < 0 || (size_t)n >= sizeof path) return 1;
+    int fd = mkstemps(path, 4);
+    if (fd < 0) return 1;
+    close(fd);
+    atexit(remove_input);
     memory = malloc(BUDGET);
     return memory ? 0 : 1;
 }
