@@ -30,6 +30,7 @@ int jd_cmd_reference(int argc, char **argv)
     jd_ref_desc d = {.mesh = &s.mesh, .scene = o.scene, .width = o.width, .height = o.height,
                      .samples = (uint32_t)o.samples, .error = o.ref_error, .window_mm = o.window_mm,
                      .pixel_samples = o.pixel_samples, .bounces = o.bounces,
+                     .volume = o.volume, .volume_mm = o.volume_mm,
                      .threads = o.threads, .progress = !o.quiet, .seed = (uint32_t)o.seed};
     size_t n = (size_t)o.width * o.height;
     float *linear = malloc(n * 3 * sizeof(float));
@@ -69,13 +70,22 @@ int jd_cmd_reference(int argc, char **argv)
     printf("wrote %s%s%s%s%s (%dx%d, reference, %s, mesh %s: %s)\n", o.out, o.pfm ? ", " : "", o.pfm ? o.pfm : "",
            o.mask_out ? ", " : "", o.mask_out ? o.mask_out : "", o.width, o.height, o.material, s.mesh_path,
            jd_session_triangles(&s, tri, sizeof tri));
-    printf("%u samples (%.3f mm apart over %.0f mm^2; %u carry light across a thin part), window %.2f mm, %d "
-           "threads; irradiance %.0f ms, octree %.0f ms, ",
-           st.samples, st.spacing_mm, st.surface_mm2, st.carried, st.window_mm, st.threads, st.irradiance_ms,
-           st.tree_ms);
+    if (o.volume)
+        printf("%u samples (%.3f mm apart over %.0f mm^2), %d threads; irradiance %.0f ms, volume %u cells of %.3g mm "
+               "(%.2f%% of the light in parts thinner than one), solved in %.0f ms (%d iterations to residual %.1e), ",
+               st.samples, st.spacing_mm, st.surface_mm2, st.threads, st.irradiance_ms, st.volume_cells, st.volume_mm,
+               100 * st.volume_lost, st.tree_ms, st.volume_iterations, st.volume_residual);
+    else
+        printf("%u samples (%.3f mm apart over %.0f mm^2; %u carry light across a thin part), window %.2f mm, %d "
+               "threads; irradiance %.0f ms, octree %.0f ms, ",
+               st.samples, st.spacing_mm, st.surface_mm2, st.carried, st.window_mm, st.threads, st.irradiance_ms,
+               st.tree_ms);
     if (o.bounces) printf("light between parts %.0f ms (%d bounce%s), ", st.bounce_ms, o.bounces, o.bounces > 1 ? "s" : "");
-    printf("pixels %.0f ms (%ld on the object, %.0f kernel evaluations each)\n", st.pixels_ms, st.object_pixels,
-           st.evals_per_pixel);
+    if (o.volume)
+        printf("pixels %.0f ms (%ld on the object)\n", st.pixels_ms, st.object_pixels);
+    else
+        printf("pixels %.0f ms (%ld on the object, %.0f kernel evaluations each)\n", st.pixels_ms, st.object_pixels,
+               st.evals_per_pixel);
     rc = 0;
 done:
     jd_ref_destroy(ref);

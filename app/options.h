@@ -25,6 +25,8 @@ typedef struct jd_options {
     float ref_error, window_mm;
     int pixel_samples;
     int bounces;            /* jade reference: inter-reflection rounds */
+    int volume;             /* jade reference: the diffusion equation in the body */
+    float volume_mm;
     const char *drm_device, *connector, *display_mode;
     int rotation;
     int kms;           /* kiosk: jd_kms_api (platform.h) */

@@ -17,6 +17,7 @@
 #include "ref_diffusion.h"
 #include "ref_samples.h"
 #include "ref_slab.h"
+#include "ref_volume.h"
 #include "vmath.h"
 
 enum { JD_BEAM_STEPS = 64 }; /* the beam's albedo table: its cosine in 64 steps */
@@ -35,6 +36,8 @@ struct jd_ref {
     float *pt_alb;
     jd_diffusion diff;
     jd_diffusion carry;  /* light carried across thin parts (ref_slab.h); no nodes where none is */
+    jd_volume vol;       /* desc.volume: the diffusion equation in the body, in place of both */
+    jd_volume_desc vd;
     jd_dipole dp;
     /* The light's beam by its cosine (0..1 in JD_BEAM_STEPS): the
      * half-space's albedo for that beam over its albedo for diffuse light,
@@ -274,11 +277,11 @@ static void irr_chunk(void *ctx, long b, long e, uint64_t *evals)
             p->ea[k] = ei[k] * p->area * (r->pt_alb ? r->pt_alb[3 * i + k] : 1.0f);
             p->p[k] = pw[k] * r->mm_per_world; /* the octree works in millimetres */
         }
-        if (!r->d.half_space) carry_across(r, pw, n, p, &r->pts[((irr_ctx *)ctx)->n + i]);
+        if (!r->d.half_space && !r->d.volume) carry_across(r, pw, n, p, &r->pts[((irr_ctx *)ctx)->n + i]);
     }
 }
 
-static uint32_t exitance(const jd_ref *r, const float x[3], const float e[3], float out[3]);
+static uint32_t exitance(const jd_ref *r, const float x[3], const float n[3], const float e[3], float out[3]);
 
 /* The surface point a ray hit (p, its normal n and geometric normal ng)
  * and the light leaving it, Mo in its colour where the model has colours
@@ -290,7 +293,7 @@ static uint32_t hit_exitance(const jd_ref *r, const jd_hit *hit, float p[3], flo
     surface_at(r, hit->tri, hit->u, hit->v, p, n, ng);
     irradiance(r, p, n, ng, ev);
     for (int k = 0; k < 3; k++) xm[k] = p[k] * r->mm_per_world;
-    uint32_t evals = exitance(r, xm, ev, mo);
+    uint32_t evals = exitance(r, xm, n, ev, mo);
     if (r->d.mesh->colors) {
         float fo[3];
         albedo_factor(r, hit->tri, hit->u, hit->v, fo);
@@ -306,6 +309,18 @@ static jd_result light_samples(jd_ref *r, uint32_t n, float error, int progress,
     irr_ctx ic = {r, n};
     double t0 = jd_clock_ms();
     par_run(r->st.threads, n, 2048, irr_chunk, &ic, "irradiance", progress);
+    if (r->d.volume) {
+        double t1 = jd_clock_ms();
+        r->st.irradiance_ms += t1 - t0;
+        jd_result res = jd_volume_solve(&r->vol, &r->vd, r->pts, r->pt_n, n, err);
+        r->st.tree_ms += jd_clock_ms() - t1;
+        r->st.volume_cells = r->vol.num_inside;
+        r->st.volume_mm = r->vol.h;
+        r->st.volume_iterations = r->vol.iterations;
+        r->st.volume_residual = r->vol.residual;
+        r->st.volume_lost = r->vol.lost;
+        return res;
+    }
     if (!r->d.half_space) {
         uint32_t all = n;
         for (uint32_t i = n; i < 2 * n; i++)
@@ -439,6 +454,12 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
 
     jd_result res = jd_bvh_build(&r->bvh, r->pos, r->tri, r->num_tris, err);
     if (res) { jd_ref_destroy(r); return res; }
+    if (desc->volume) {
+        r->vd = (jd_volume_desc){.bvh = &r->bvh, .mm_per_world = r->mm_per_world, .dp = &r->dp,
+                                 .cell_mm = desc->volume_mm};
+        res = jd_volume_init(&r->vol, &r->vd, err);
+        if (res) { jd_ref_destroy(r); return res; }
+    }
 
     /* Samples uniform by area, spread evenly (ref_samples.h). */
     double total = 0;
@@ -451,7 +472,13 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     double mm2 = (double)r->mm_per_world * r->mm_per_world;
     r->st.surface_mm2 = total * mm2;
     uint32_t n = desc->samples;
-    if (!n) {
+    if (!n && desc->volume) {
+        /* Four a cell face: fewer leave the cells under the surface a
+         * sample's graininess (fandisk, front-lit: blotches a few cells
+         * wide at one a face, gone at four). */
+        double sp = fmin(0.3, 0.5 * r->vol.h), want = r->st.surface_mm2 / (sp * sp);
+        n = (uint32_t)(want < 20000 ? 20000 : want > 4000000 ? 4000000 : want);
+    } else if (!n) {
         double want = r->st.surface_mm2 / (0.3 * 0.3);
         n = (uint32_t)(want < 20000 ? 20000 : want > 400000 ? 400000 : want);
     }
@@ -459,7 +486,7 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     res = jd_surface_samples(r->pos, r->tri, r->num_tris, n, desc->seed, &sp, &n, err);
     if (res) { jd_ref_destroy(r); return res; }
     /* Room for each sample's light carried across a thin part. */
-    r->pts = malloc(sizeof *r->pts * (n ? n : 1) * (desc->half_space ? 1 : 2));
+    r->pts = malloc(sizeof *r->pts * (n ? n : 1) * (desc->half_space || desc->volume ? 1 : 2));
     r->pt_n = malloc(sizeof(float) * 6 * (n ? n : 1));
     if (!r->pts || !r->pt_n) {
         free(sp);
@@ -519,10 +546,14 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     return JD_OK;
 }
 
-/* Mo at x (mm) where the irradiance is e: the samples' light and what
- * thin parts carried there. */
-static uint32_t exitance(const jd_ref *r, const float x[3], const float e[3], float out[3])
+/* Mo at x (mm, outward normal n) where the irradiance is e: the samples'
+ * light and what thin parts carried there, or the volume's solve. */
+static uint32_t exitance(const jd_ref *r, const float x[3], const float n[3], const float e[3], float out[3])
 {
+    if (r->d.volume) {
+        jd_volume_exitance(&r->vol, x, n, out);
+        return 1;
+    }
     uint32_t evals = jd_diffusion_exitance(&r->diff, x, e, out);
     if (r->carry.num_nodes) {
         float t[3];
@@ -537,6 +568,7 @@ void jd_ref_destroy(jd_ref *r)
     if (!r) return;
     jd_diffusion_free(&r->diff);
     jd_diffusion_free(&r->carry);
+    jd_volume_free(&r->vol);
     jd_bvh_free(&r->bvh);
     free(r->pos); free(r->nrm); free(r->tri); free(r->pts); free(r->pt_n); free(r->pt_alb); free(r->ind);
     free(r);
@@ -547,7 +579,7 @@ void jd_ref_exitance(const jd_ref *r, const float p[3], const float n[3], float 
     float e[3], ng[3] = {n[0], n[1], n[2]}, x[3];
     irradiance(r, p, n, ng, e);
     for (int k = 0; k < 3; k++) x[k] = p[k] * r->mm_per_world;
-    exitance(r, x, e, out);
+    exitance(r, x, n, e, out);
 }
 
 /* ---- the picture -------------------------------------------------------- */

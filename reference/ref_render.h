@@ -34,6 +34,9 @@ typedef struct jd_ref_desc {
     uint32_t seed;           /* sample placement */
     int half_space;          /* every sample as if on a half-space (the dipole alone, no light carried
                                 across thin parts, ref_slab.h): the reference before 2026-11-25 */
+    int volume;              /* the diffusion equation solved in the body (ref_volume.h) in place of the
+                                dipole's sum: light round bends and through thick parts */
+    float volume_mm;         /* [0: ref_volume's choice] its cells' size */
     int bounces;             /* [0] times the light the object gives out falls on it again and enters
                                 (inter-reflection through the air between its parts; 8 rays a sample) */
     /* Tests: replaces the light's irradiance (world position, outward normal). */
@@ -45,8 +48,12 @@ typedef struct jd_ref_stats {
     uint32_t samples;
     uint32_t carried;        /* samples whose light also leaves the far side of a thin part */
     double spacing_mm, window_mm, surface_mm2, mm_per_world;
-    double setup_ms, irradiance_ms, tree_ms, bounce_ms, pixels_ms;
+    double setup_ms, irradiance_ms, tree_ms, bounce_ms, pixels_ms; /* tree_ms: the octrees, or the volume's solve */
     double evals_per_pixel;
+    uint32_t volume_cells;   /* desc.volume: cells inside, their size, the solve's iterations and residual */
+    float volume_mm;
+    int volume_iterations;
+    double volume_residual, volume_lost;
     long object_pixels;
     int threads;
 } jd_ref_stats;
