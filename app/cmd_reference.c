@@ -24,6 +24,7 @@ int jd_cmd_reference(int argc, char **argv)
                                 "The PNG is tone-mapped exactly as jade maps its own output.",
                                 argc, argv);
     if (rc >= 0) return rc;
+    if (o.volume_mm > 0) o.volume = 1; /* a cell size only means something to the volume */
     jd_session s;
     if (!jd_session_open_mesh(&s, &o, "reference")) { jd_session_close(&s); return 1; }
 

@@ -46,7 +46,7 @@ static const opt table[] = {
     {"--pixel-samples", T_INT, OFF(pixel_samples), 1, 8, JD_OPT_REFERENCE, "N          N x N rays a pixel, averaged in linear light (textures' edges) [1]"},
     {"--bounces", T_INT, OFF(bounces), 0, 4, JD_OPT_REFERENCE, "N          rounds of light falling from one part of the object on another (inter-reflection), 8 rays a sample each [0]"},
     {"--volume", T_FLAG, OFF(volume), 0, 0, JD_OPT_REFERENCE, "           solve the diffusion equation in the body on a grid (light round bends, through thick parts) instead of summing the dipole"},
-    {"--volume-mm", T_FLOAT, OFF(volume_mm), 0.05, 100, JD_OPT_REFERENCE, "X          with --volume: the grid's cells, mm [the finest that keeps 6 million cells in the box around the object, at least 0.25]"},
+    {"--volume-mm", T_FLOAT, OFF(volume_mm), 0.05, 100, JD_OPT_REFERENCE, "X          the volume's cells, mm (implies --volume) [the finest that keeps 6 million cells in the box around the object, at least 0.25]"},
     {"--threads", T_INT, OFF(threads), 1, 256, JD_OPT_REFERENCE, "N          [every core]"},
     {"--seed", T_INT, OFF(seed), 0, 1000000000, JD_OPT_REFERENCE, "N          sample placement [0]"},
     {"--quiet", T_FLAG, OFF(quiet), 0, 0, JD_OPT_REFERENCE, "           no progress bar"},
