@@ -37,10 +37,11 @@ static void h_function(double alpha, const double *mu, double *h, double *next)
     }
 }
 
-/* Gaussian elimination with partial pivoting: a (n x n, row-major) x = b,
- * b replaced by x. The matrix is I - K F with K's columns summing to under
- * 1 and F <= 1: well conditioned for every alpha < 1. */
-static void solve(double *a, double *b, int n)
+/* Gaussian elimination with partial pivoting: a (n x n, row-major) x = b
+ * for m right-hand sides at once (b n x m, row-major), b replaced by x. The
+ * matrix is I - K F with K's columns summing to under 1 and F <= 1: well
+ * conditioned for every alpha < 1. */
+static void solve_multi(double *a, double *b, int n, int m)
 {
     for (int k = 0; k < n; k++) {
         int p = k;
@@ -52,23 +53,28 @@ static void solve(double *a, double *b, int n)
                 a[(size_t)k * n + j] = a[(size_t)p * n + j];
                 a[(size_t)p * n + j] = t;
             }
-            double t = b[k];
-            b[k] = b[p];
-            b[p] = t;
+            for (int c = 0; c < m; c++) {
+                double t = b[(size_t)k * m + c];
+                b[(size_t)k * m + c] = b[(size_t)p * m + c];
+                b[(size_t)p * m + c] = t;
+            }
         }
         for (int i = k + 1; i < n; i++) {
             double f = a[(size_t)i * n + k] / a[(size_t)k * n + k];
             if (f == 0.0) continue;
             for (int j = k; j < n; j++) a[(size_t)i * n + j] -= f * a[(size_t)k * n + j];
-            b[i] -= f * b[k];
+            for (int c = 0; c < m; c++) b[(size_t)i * m + c] -= f * b[(size_t)k * m + c];
         }
     }
-    for (int k = n - 1; k >= 0; k--) {
-        double s = b[k];
-        for (int j = k + 1; j < n; j++) s -= a[(size_t)k * n + j] * b[j];
-        b[k] = s / a[(size_t)k * n + k];
-    }
+    for (int k = n - 1; k >= 0; k--)
+        for (int c = 0; c < m; c++) {
+            double s = b[(size_t)k * m + c];
+            for (int j = k + 1; j < n; j++) s -= a[(size_t)k * n + j] * b[(size_t)j * m + c];
+            b[(size_t)k * m + c] = s / a[(size_t)k * n + k];
+        }
 }
+
+static void solve(double *a, double *b, int n) { solve_multi(a, b, n, 1); }
 
 /* R[j]: of unit flux going in at the inside's cosine mu[j], the part that
  * comes back out. Index-matched, Chandrasekhar's 1 - H(mu) sqrt(1 - alpha).
@@ -147,6 +153,90 @@ double jd_halfspace_albedo(double alpha, double eta)
     return diffuse_albedo(eta, mu, R, f);
 }
 
+/* k of the diffusion mode e^(-k tau) of an isotropically scattering
+ * medium at albedo alpha: alpha atanh(k) / k = 1, by bisection (atanh(k) / k
+ * rises from 1 at k = 0 without end towards k = 1). */
+static double mode_k(double alpha)
+{
+    double lo = 0.0, hi = 1.0;
+    for (int it = 0; it < 100; it++) {
+        double k = 0.5 * (lo + hi);
+        if (k <= 0.0 || atanh(k) / k < 1.0 / alpha) lo = k;
+        else hi = k;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/* Linear between the inside's points at the inside cosine of each of the
+ * outside's cosines k / (n - 1) (Snell), held at the ends. */
+static void at_outside(double eta, const double *v, int n, double *out)
+{
+    for (int k = 0; k < n; k++) {
+        double mu_e = (double)k / (n - 1), mi = sqrt(fmax(0.0, 1.0 - (1.0 - mu_e * mu_e) / (eta * eta)));
+        double x = mi * HS_POINTS - 0.5;
+        if (x <= 0) out[k] = v[0];
+        else if (x >= HS_POINTS - 1) out[k] = v[HS_POINTS - 1];
+        else {
+            int i = (int)x;
+            out[k] = v[i] + (x - i) * (v[i + 1] - v[i]);
+        }
+    }
+}
+
+int jd_halfspace_exit(double alpha, double eta, int n, double *deep, double *beam)
+{
+    if (n < 2 || n > 256) return -1;
+    if (!(eta > 0)) eta = 1.0;
+    alpha = alpha < 1e-6 ? 1e-6 : alpha > 1.0 - 1e-9 ? 1.0 - 1e-9 : alpha;
+    const int m = n + 1, matched = fabs(eta - 1.0) < 1e-9; /* columns: the n beams, then the deep light */
+    const double w = 1.0 / HS_POINTS, kk = mode_k(alpha);
+    double mu[HS_POINTS], h[HS_POINTS], f[HS_POINTS], tmp[HS_POINTS];
+    double *u = malloc(sizeof(double) * HS_POINTS * m), *a = matched ? NULL : malloc(sizeof(double) * HS_POINTS * HS_POINTS);
+    if (!u || (!matched && !a)) { free(u); free(a); return -1; }
+    points(mu);
+    h_function(alpha, mu, h, tmp);
+    for (int i = 0; i < HS_POINTS; i++) f[i] = matched ? 0.0 : jd_fresnel_dielectric(mu[i], eta, 1.0);
+#define K(i, j) (0.5 * alpha * h[i] * h[j] * mu[i] * w / (mu[i] + mu[j]))
+    /* The flux coming up at the inside's points: for a beam that entered at
+     * the inside cosine of the outside's c / (n - 1) (its unit flux split
+     * between the two points beside it), the half-space's reflection K of
+     * it; from light deep below, the Milne problem's law of darkening,
+     * H(mu) / (1 - k mu) in radiance (Chandrasekhar 1960; tests/test_reference.c
+     * holds both to a Monte Carlo walk). */
+    for (int c = 0; c < n; c++) {
+        double mu_e = (double)c / (n - 1), mi = sqrt(fmax(0.0, 1.0 - (1.0 - mu_e * mu_e) / (eta * eta)));
+        double x = mi * HS_POINTS - 0.5;
+        int j0 = x <= 0 ? 0 : x >= HS_POINTS - 1 ? HS_POINTS - 2 : (int)x;
+        double t = x <= 0 ? 0.0 : x >= HS_POINTS - 1 ? 1.0 : x - j0;
+        for (int i = 0; i < HS_POINTS; i++) u[(size_t)i * m + c] = (1.0 - t) * K(i, j0) + t * K(i, j0 + 1);
+    }
+    for (int i = 0; i < HS_POINTS; i++) u[(size_t)i * m + n] = h[i] / (1.0 - kk * mu[i]) * mu[i] * w;
+    if (!matched) {
+        /* What the boundary reflects back the half-space sends up again:
+         * u = u0 + K F u. */
+        for (int i = 0; i < HS_POINTS; i++)
+            for (int j = 0; j < HS_POINTS; j++) a[(size_t)i * HS_POINTS + j] = (i == j ? 1.0 : 0.0) - K(i, j) * f[j];
+        solve_multi(a, u, HS_POINTS, m);
+    }
+#undef K
+    /* The flux that leaves, (1 - F) u, as radiance outside (mu_e dmu_e =
+     * eta^2 mu dmu), over that of a Lambertian surface of the same exitance. */
+    for (int c = 0; c < m; c++) {
+        double total = 0, g[HS_POINTS], o[256];
+        for (int i = 0; i < HS_POINTS; i++) total += (1.0 - f[i]) * u[(size_t)i * m + c];
+        for (int i = 0; i < HS_POINTS; i++)
+            g[i] = total > 0 ? (1.0 - f[i]) * u[(size_t)i * m + c] / (eta * eta * mu[i] * w) / (2.0 * total) : 1.0;
+        at_outside(eta, g, n, o);
+        for (int i = 0; i < n; i++) {
+            if (c == n) { if (deep) deep[i] = o[i]; }
+            else if (beam) beam[(size_t)i * n + c] = o[i];
+        }
+    }
+    free(u);
+    free(a);
+    return 0;
+}
+
 int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out, double *diffuse)
 {
     if (n < 2) return -1;
@@ -159,17 +249,6 @@ int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out, doubl
     }
     if (beam_albedo(alpha, eta, mu, R, f)) return -1;
     if (diffuse) *diffuse = diffuse_albedo(eta, mu, R, f);
-    for (int k = 0; k < n; k++) {
-        /* The outside's cosine to the inside's (Snell), then linear between
-         * the points, held at the ends. */
-        double mu_e = (double)k / (n - 1), mi = sqrt(fmax(0.0, 1.0 - (1.0 - mu_e * mu_e) / (eta * eta)));
-        double x = mi * HS_POINTS - 0.5;
-        if (x <= 0) out[k] = R[0];
-        else if (x >= HS_POINTS - 1) out[k] = R[HS_POINTS - 1];
-        else {
-            int i = (int)x;
-            out[k] = R[i] + (x - i) * (R[i + 1] - R[i]);
-        }
-    }
+    at_outside(eta, R, n, out);
     return 0;
 }

@@ -5,8 +5,9 @@
 # jade reference carries across its thin parts), less what full's levels
 # already bring. The default asset back-lit in ketchup, whose lobes glow
 # red from behind: full against jade's reference, summed per vertex (this
-# GPU) and per fragment (the mali400 and vivante profiles). Measured 0.0135 with it,
-# 0.0158 without (both paths): the bound lies between, nearer today's.
+# GPU) and per fragment (the mali400 and vivante profiles). Measured 0.0143 with it,
+# 0.0161 without (all three paths; 0.0135 and 0.0158 before the reference took the
+# half-space's exit laws, 2026-11-28): the bound lies between, nearer today's.
 jade=$1
 . "$(dirname "$0")/harness.sh"
 scene="--size 128x128 --material ketchup"
@@ -16,8 +17,8 @@ for p in device mali400 vivante; do
     # shellcheck disable=SC2086,SC2046
     "$jade" render $scene $([ $p = device ] || echo --profile $p) --out "$tmp/$p.png" >/dev/null 2>&1 || bad "jade render ($p) did not run"
     r=$("$jade" metric "$tmp/$p.png" "$tmp/ref.png" --mask "$tmp/mask.png" | sed -n 's/.*"rmse": \([0-9.]*\).*/\1/p')
-    if awk -v r="$r" 'BEGIN { exit !(r != "" && r <= 0.0142) }'; then ok "$p: full's RMSE against the reference $r <= 0.0142 (0.0158 without the light through thin parts)"
-    else bad "$p: full's RMSE against the reference $r, over 0.0142 (measured 0.0135; 0.0158 without the light through thin parts)"; fi
+    if awk -v r="$r" 'BEGIN { exit !(r != "" && r <= 0.0149) }'; then ok "$p: full's RMSE against the reference $r <= 0.0149 (0.0161 without the light through thin parts)"
+    else bad "$p: full's RMSE against the reference $r, over 0.0149 (measured 0.0143; 0.0161 without the light through thin parts)"; fi
 done
 # A mesh past 2^17 triangles, where jade takes each vertex's thickness from
 # the light map's proxy round it instead of a ray a vertex (renderer.c):
