@@ -35,7 +35,8 @@ int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out, doubl
  * (index-matched, H(mu) H(mu_j) / (mu + mu_j) as Chandrasekhar's law of
  * diffuse reflection has it).
  * Behind a smooth dielectric the boundary's internal reflections are added
- * as in jd_halfspace_albedo (1.3 MB, 0.1 s). 0, or -1 when out of memory. */
+ * as in jd_halfspace_albedo (1.3 MB; 13-39 ms at eta 1.3, as long as the
+ * albedo's). 0, or -1 when out of memory. */
 int jd_halfspace_exit(double alpha, double eta, int n, double *deep, double *beam);
 
 /* Unpolarised Fresnel reflectance of a smooth boundary, going from index n1
