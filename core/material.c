@@ -38,6 +38,40 @@ double jd_dipole_fdr(double eta)
     return -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
 }
 
+double jd_fresnel_dielectric(double cos_i, double n1, double n2)
+{
+    double sin_t = n1 / n2 * sqrt(fmax(0.0, 1.0 - cos_i * cos_i));
+    if (sin_t >= 1.0) return 1.0; /* total internal reflection */
+    double cos_t = sqrt(1.0 - sin_t * sin_t);
+    double rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    double rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+void jd_fresnel_fit(double eta, float ab[2])
+{
+    /* t(mu) = T(mu) / Tmean, Tmean = 2 integral of T mu dmu, on the
+     * midpoint rule's points. a - b x^5 has the mean a - b / 21 (2 integral
+     * of (1 - mu)^5 mu dmu = 1/21): held to 1, a = 1 + b / 21, and
+     * t - 1 = b g with g = 1/21 - x^5, solved for b by least squares
+     * weighted as the mean weighs (by mu). */
+    enum { N = 256 };
+    double t[N], mean = 0, num = 0, den = 0;
+    for (int i = 0; i < N; i++) {
+        double mu = (i + 0.5) / N;
+        t[i] = 1.0 - jd_fresnel_dielectric(mu, 1.0, eta);
+        mean += 2.0 * mu * t[i] / N;
+    }
+    for (int i = 0; i < N; i++) {
+        double mu = (i + 0.5) / N, x = 1.0 - mu, g = 1.0 / 21.0 - x * x * x * x * x;
+        num += mu * g * (t[i] / mean - 1.0);
+        den += mu * g * g;
+    }
+    double b = num / den;
+    ab[0] = (float)(1.0 + b / 21.0);
+    ab[1] = (float)b;
+}
+
 double jd_dipole_rd_total(double alpha, double A)
 {
     double s = sqrt(3.0 * (1.0 - alpha));

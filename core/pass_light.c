@@ -129,7 +129,7 @@ void jdr_pass_light_depth(jd_renderer *r, const jd_scene *s, const frame_params 
     glUseProgram(r->depth_prog);
     glUniformMatrix4fv(r->depth_mvp, 1, GL_FALSE, f->light_mvp.m);
     glUniform3f(r->depth_light_dir, f->light_dir.x, f->light_dir.y, f->light_dir.z);
-    glUniform1f(r->depth_f0, f->f0);
+    glUniform2fv(r->depth_fresnel, 1, f->fresnel);
     jdr_bind_mesh(r->proxy_vbo, r->proxy_ibo);
     jdr_draw_elements(r, 1, &f->light_mvp, (GLsizei)r->proxy.num_indices, GL_UNSIGNED_SHORT, 0, -1);
 }

@@ -19,6 +19,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     glUniform4fv(p->light_map, 1, f->light_map);
     glUniform2fv(p->shadow_bias, 1, f->shadow_bias);
     if (p->f0 >= 0) glUniform1f(p->f0, f->f0);
+    if (p->fresnel >= 0) glUniform2fv(p->fresnel, 1, f->fresnel);
     if (p->depth >= 0) glUniform1i(p->depth, 0);
     if (p->depth_v >= 0) glUniform1i(p->depth_v, 0);
     glActiveTexture(GL_TEXTURE0);

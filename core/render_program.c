@@ -81,6 +81,7 @@ static void shade_locations(shade_prog *p)
     p->depth_v = glGetUniformLocation(id, "u_depth_v");
     p->tail_v = glGetUniformLocation(id, "u_tail_v");
     p->f0 = glGetUniformLocation(id, "u_f0");
+    p->fresnel = glGetUniformLocation(id, "u_fresnel");
     p->a0_scale = glGetUniformLocation(id, "u_a0_scale");
     p->spread = glGetUniformLocation(id, "u_spread");
     p->inv_viewport = glGetUniformLocation(id, "u_inv_viewport");
@@ -223,7 +224,7 @@ static jd_result build_base(jd_renderer *r, jd_error *err)
         return res;
     r->depth_mvp = glGetUniformLocation(r->depth_prog, "u_light_mvp");
     r->depth_light_dir = glGetUniformLocation(r->depth_prog, "u_light_dir");
-    r->depth_f0 = glGetUniformLocation(r->depth_prog, "u_f0");
+    r->depth_fresnel = glGetUniformLocation(r->depth_prog, "u_fresnel");
     return JD_OK;
 }
 

@@ -420,6 +420,7 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
     double mean_ss = o.mean_sigma_s;
     f->range_mm = 2.0f * f->mm_per_world;
     f->f0 = sv.f0;
+    memcpy(f->fresnel, sv.fresnel, sizeof f->fresnel);
     f->shading[0] = s->ambient;
     f->shading[1] = s->specular;
     f->shading[2] = sv.shininess;

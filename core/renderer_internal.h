@@ -51,7 +51,7 @@ static inline int pot(int n)
 typedef struct shade_prog {
     GLuint id;
     GLint mvp, light_tex, eye, irr, box_min, box_max, inv_eta, inset;
-    GLint light_dir, albedo, light_color, shading, depth, tail, depth_v, tail_v, f0, a0_scale;
+    GLint light_dir, albedo, light_color, shading, depth, tail, depth_v, tail_v, f0, fresnel, a0_scale;
     GLint spread, inv_viewport, w0, wide_scale;
     GLint light_map, shadow_bias, lv[DIFF_TEXTURES], lw, ls;
     GLint amb_x, local_x, wide_x, spec_x; /* full's constant factors (shade.frag) */
@@ -148,7 +148,7 @@ struct jd_renderer {
     GLint soft_src, soft_step, soft_c, soft_scale;
     GLuint aa_prog, up_prog;
     GLint aa_src, aa_texel, aa_scale, up_src, up_scale;
-    GLint depth_mvp, depth_light_dir, depth_f0;
+    GLint depth_mvp, depth_light_dir, depth_fresnel;
     GLint cap_mvp, cap_light_tex, cap_light_dir, cap_bias, cap_depth, cap_light_color;
     GLint proj_atlas, proj_texel, rm_src, rm_texel, rf_src, rf_texel, rl_src, rl_texel;
     GLuint irr_prog; /* the SH result to the irradiance map */
@@ -204,7 +204,7 @@ typedef struct frame_params {
     jd_mat4 light_tex;
     jd_vec3 eye, light_dir;
     float light_color[3], albedo[3];
-    float a0_scale[3], f0;
+    float a0_scale[3], f0, fresnel[2];
     float shading[4];
     float range_mm;
     jd_dipole dipole;

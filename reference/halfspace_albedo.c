@@ -1,19 +1,11 @@
 #include "halfspace_albedo.h"
 
+#include "material.h"
+
 #include <math.h>
 #include <stdlib.h>
 
 enum { HS_POINTS = 400, HS_MAX_ITER = 20000 };
-
-double jd_fresnel_dielectric(double cos_i, double n1, double n2)
-{
-    double sin_t = n1 / n2 * sqrt(fmax(0.0, 1.0 - cos_i * cos_i));
-    if (sin_t >= 1.0) return 1.0; /* total internal reflection */
-    double cos_t = sqrt(1.0 - sin_t * sin_t);
-    double rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
-    double rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
-    return 0.5 * (rs * rs + rp * rp);
-}
 
 /* Chandrasekhar's H(mu) for isotropic scattering at albedo alpha, on the
  * midpoint rule's points mu[i] = (i + 0.5) / HS_POINTS (H is smooth on

@@ -39,10 +39,6 @@ int jd_halfspace_albedo_beam(double alpha, double eta, int n, double *out, doubl
  * albedo's). 0, or -1 when out of memory. */
 int jd_halfspace_exit(double alpha, double eta, int n, double *deep, double *beam);
 
-/* Unpolarised Fresnel reflectance of a smooth boundary, going from index n1
- * into n2 at the cosine cos_i; 1 past the critical angle. */
-double jd_fresnel_dielectric(double cos_i, double n1, double n2);
-
 #ifdef __cplusplus
 }
 #endif

@@ -12,6 +12,7 @@
 #include "clock.h"
 #include "display_curve.h"
 #include "halfspace_albedo.h"
+#include "material.h"
 #include "progress.h"
 #include "ref_bvh.h"
 #include "ref_diffusion.h"

@@ -7,12 +7,14 @@
  * Blinn-Phong specular and tone curve. Where jade has Rd_total (ambient +
  * N.L) + its translucent layers, the reference has
  *
- *   L(xo) = Ft(wo)/c * Mo(xo),   Mo(xo) = sum_i Rd(|x_i - xo|) E_i A_i
+ *   L(xo) = X(xo, wo) * Mo(xo),   Mo(xo) = sum_i Rd(|x_i - xo|) E_i A_i
  *   E_i   = ambient + I max(N.L, 0) Ft(wi)/c * visible(x_i -> light)
  *
- * with Ft Schlick's transmittance (jade's) and c its hemispherical average
- * (1 - F0) 20/21, so that a flat slab under uniform light shows exactly
- * Rd_total: jade's own albedo. */
+ * with Ft the true unpolarised Fresnel transmittance and c its mean under
+ * diffuse light, and X how a scattering half-space sends its light out
+ * (ref_render.c, leaving_light: 1 over the hemisphere's cosine-weighted
+ * mean), so that a flat slab under uniform light shows exactly Rd_total:
+ * jade's own albedo. */
 #ifndef JD_REF_RENDER_H
 #define JD_REF_RENDER_H
 

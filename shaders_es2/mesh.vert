@@ -52,7 +52,7 @@ varying vec3 v_uv;             // texture coordinates, the entry's mip bias
 // and the interpolated vector is short by the cosine of half the angle
 // between its vertices' (a 12-triangle cube close up: 2 of 255 at most).
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
-uniform float u_f0;
+uniform vec2 u_fresnel;      // jd_fresnel_tc's fit at the scene's eta
 varying vec2 v_fresnel;
 varying vec3 v_half;
 #endif
@@ -169,7 +169,7 @@ void main()
     if (dot(nf, vf) < 0.0) nf = -nf;
     float ndl_v = max(dot(nf, u_light_dir), 0.0);
     // n.l is 0 on a face turned from the light: keep counts only where lit.
-    v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_f0) * keep.g, jd_fresnel_tc(dot(nf, vf), u_f0));
+    v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_fresnel) * keep.g, jd_fresnel_tc(dot(nf, vf), u_fresnel));
     v_half = normalize(u_light_dir + vf);
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION

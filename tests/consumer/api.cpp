@@ -34,6 +34,8 @@ int main()
         FN(jd_dipole_tail),
         FN(jd_extension_listed),
         FN(jd_fail),
+        FN(jd_fresnel_dielectric),
+        FN(jd_fresnel_fit),
         FN(jd_gl_caps_query),
         FN(jd_gl_caps_recognise),
         FN(jd_gl_has_extension),
