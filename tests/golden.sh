@@ -1,11 +1,12 @@
 #!/bin/sh
 # golden.sh JADE IMGCMP MESH GOLDEN.png OUT.png [render options...]
 # Renders MESH and compares it with a stored golden image, with a tolerance.
-# Exit 77 (skipped) when the mesh, which comes from ../shared, is absent.
+# Exit 77 (skipped) when the mesh is absent (one encoded from ../shared at
+# test time may be).
 jade=$1 imgcmp=$2 mesh=$3 golden=$4 out=$5
 shift 5
 if [ ! -f "$mesh" ]; then
-    echo "SKIP: $mesh is absent (it is encoded from ../shared/testdata at test time)"
+    echo "SKIP: $mesh is absent"
     exit 77
 fi
 "$jade" render --mesh "$mesh" --out "$out" "$@" || exit 1
