@@ -48,25 +48,37 @@ double jd_fresnel_dielectric(double cos_i, double n1, double n2)
     return 0.5 * (rs * rs + rp * rp);
 }
 
+enum { FRESNEL_POINTS = 256 }; /* the midpoint rule's, over the cosine */
+
+double jd_fresnel_mean(double eta)
+{
+    double mean = 0;
+    for (int i = 0; i < FRESNEL_POINTS; i++) {
+        double mu = (i + 0.5) / FRESNEL_POINTS;
+        mean += 2.0 * mu * (1.0 - jd_fresnel_dielectric(mu, 1.0, eta)) / FRESNEL_POINTS;
+    }
+    return mean;
+}
+
 void jd_fresnel_fit(double eta, float ab[2])
 {
-    /* t(mu) = T(mu) / Tmean, Tmean = 2 integral of T mu dmu, on the
-     * midpoint rule's points. a - b x^5 has the mean a - b / 21 (2 integral
-     * of (1 - mu)^5 mu dmu = 1/21): held to 1, a = 1 + b / 21, and
-     * t - 1 = b g with g = 1/21 - x^5, solved for b by least squares
-     * weighted as the mean weighs (by mu). */
-    enum { N = 256 };
-    double t[N], mean = 0, num = 0, den = 0;
-    for (int i = 0; i < N; i++) {
-        double mu = (i + 0.5) / N;
-        t[i] = 1.0 - jd_fresnel_dielectric(mu, 1.0, eta);
-        mean += 2.0 * mu * t[i] / N;
-    }
-    for (int i = 0; i < N; i++) {
-        double mu = (i + 0.5) / N, x = 1.0 - mu, g = 1.0 / 21.0 - x * x * x * x * x;
-        num += mu * g * (t[i] / mean - 1.0);
+    /* t(mu) = T(mu) / Tmean (jd_fresnel_mean). a - b x^5 has the mean
+     * a - b / 21 (2 integral of (1 - mu)^5 mu dmu = 1/21): held to 1,
+     * a = 1 + b / 21, and t - 1 = b g with g = 1/21 - x^5, solved for b by
+     * least squares weighted as the mean weighs (by mu). One pass over T:
+     * sum mu g (T / Tmean - 1) = sum(mu g T) / Tmean - sum(mu g), and Tmean
+     * is the same pass's 2 sum(mu T) / N. It runs each frame (the scene's
+     * view): a few microseconds. */
+    double mean = 0, mgt = 0, mg = 0, den = 0;
+    for (int i = 0; i < FRESNEL_POINTS; i++) {
+        double mu = (i + 0.5) / FRESNEL_POINTS, x = 1.0 - mu, g = 1.0 / 21.0 - x * x * x * x * x;
+        double t = 1.0 - jd_fresnel_dielectric(mu, 1.0, eta);
+        mean += 2.0 * mu * t / FRESNEL_POINTS;
+        mgt += mu * g * t;
+        mg += mu * g;
         den += mu * g * g;
     }
+    double num = mgt / mean - mg;
     double b = num / den;
     ab[0] = (float)(1.0 + b / 21.0);
     ab[1] = (float)b;

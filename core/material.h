@@ -41,6 +41,9 @@ void jd_material_from_reflectance(const float rd[3], const float ld_mm[3], float
 /* Unpolarised Fresnel reflectance of a smooth boundary, going from index n1
  * into n2 at the cosine cos_i; 1 past the critical angle. */
 double jd_fresnel_dielectric(double cos_i, double n1, double n2);
+/* The transmittance into a smooth boundary of index eta under diffuse light:
+ * 2 integral of (1 - F(mu)) mu dmu (1 at eta 1). */
+double jd_fresnel_mean(double eta);
 /* The Fresnel transmittance of a smooth boundary of index eta (the inside's
  * over the outside's) at the outside's cosine mu, the same for light going
  * in as for light coming out towards mu (reciprocity), over its mean under

@@ -516,11 +516,7 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     /* The true (unpolarised) transmittance into the medium, over its
      * cosine-weighted mean: jade's convention that a material's albedo is of
      * the diffuse light falling on it. Index-matched it is 1 everywhere. */
-    double tmean = 0;
-    for (int k = 0; k < 1000; k++) {
-        double mu = (k + 0.5) / 1000;
-        tmean += 2.0 * mu * (1.0 - jd_fresnel_dielectric(mu, 1.0, r->view.eta)) / 1000;
-    }
+    double tmean = jd_fresnel_mean(r->view.eta);
     for (int k = 0; k <= JD_BEAM_STEPS; k++)
         r->entry_t[k] = (float)((1.0 - jd_fresnel_dielectric((double)k / JD_BEAM_STEPS, 1.0, r->view.eta)) / tmean);
     r->st.mm_per_world = r->mm_per_world;

@@ -264,6 +264,8 @@ static void test_materials(void)
             double mu = (i + 0.5) / 1000;
             mean += 2 * mu * (1 - jd_fresnel_dielectric(mu, 1.0, eta)) / 1000;
         }
+        CHECK(fabs(jd_fresnel_mean(eta) - mean) < 1e-5, "eta %.1f: the mean transmittance %.6f (1000 points: %.6f)",
+              eta, jd_fresnel_mean(eta), mean);
         for (int i = 0; i < 1000; i++) {
             double mu = (i + 0.5) / 1000, x = 1 - mu, x5 = x * x * x * x * x;
             double t = (1 - jd_fresnel_dielectric(mu, 1.0, eta)) / mean, f = ab[0] - ab[1] * x5;

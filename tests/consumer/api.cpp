@@ -36,6 +36,7 @@ int main()
         FN(jd_fail),
         FN(jd_fresnel_dielectric),
         FN(jd_fresnel_fit),
+        FN(jd_fresnel_mean),
         FN(jd_gl_caps_query),
         FN(jd_gl_caps_recognise),
         FN(jd_gl_has_extension),
