@@ -1,12 +1,13 @@
 #!/bin/sh
 # Runs inside tools/kms-test.sh's virtual machine, as root, in a chroot of
 # the host's files (read-only): jade's kiosk on the vkms kernel driver.
-# kms_guest.sh JADE VKMS.ko UINPUT_TOUCH OUT_DIR IMGCMP [SECONDS]; results in
-# OUT_DIR/results, the checks' files beside them at the end. SECONDS (of
-# the guest's uptime, 1300 unless given) bound the whole run: a check that
-# would start too late to end in time is reported as not run, so that the
-# results always arrive whole.
-jade=$1 vkms=$2 touch=$3 share=$4 imgcmp=$5 deadline=${6:-1300}
+# kms_guest.sh JADE VKMS.ko UINPUT_TOUCH OUT_DIR IMGCMP [SECONDS [STRESS_S
+# STRESS]]; results in OUT_DIR/results, the checks' files beside them at the
+# end. SECONDS (of the guest's uptime, 1300 unless given) bound the whole
+# run: a check that would start too late to end in time is reported as not
+# run, so that the results always arrive whole. STRESS_S above 0 runs the
+# program STRESS (tests/kms_vblank_stress.c) that long in place of the checks.
+jade=$1 vkms=$2 touch=$3 share=$4 imgcmp=$5 deadline=${6:-1300} stress_s=${7:-0} stress=${8:-}
 res=$share/results
 # The checks' own files (the programs' output, which the checks poll ten
 # times a second, the pictures) on the guest's tmpfs, copied to the host's
@@ -87,6 +88,14 @@ while [ ! -e /dev/dri/card0 ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
 grep " [tT] " /proc/kallsyms > "$share/kallsyms" 2>/dev/null
 [ -e /dev/dri/card0 ] && ok "vkms loaded at $(now) s: $(cat /sys/class/drm/card0-*/status 2>/dev/null | tr '\n' ' ')(/dev/dri/card0)" ||
     { bad "no /dev/dri/card0"; exit 1; }
+if [ "$stress_s" -gt 0 ]; then
+    echo "  (vblank_stress: from $(now) s)" >> "$res"
+    if "$stress" /dev/dri/card0 "$stress_s" > "$out/vblank_stress" 2>&1; then ok "vblank stress: $(tr '\n' ' ' < "$out/vblank_stress")"
+    else bad "vblank stress: $(tr '\n' ' ' < "$out/vblank_stress")"; fi
+    kill "$beating" 2>/dev/null
+    echo "kms guest: $pass passed, $fail failed, 0 not run (at $(now) s)" | tee -a "$res"
+    exit 0
+fi
 state=/sys/kernel/debug/dri/0/state
 crtc_state() { sed -n '/^crtc\[/,/^connector\[/p' "$state" | grep -v "^connector"; }
 crtc_state > "$out/crtc_before"
