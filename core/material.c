@@ -67,8 +67,8 @@ void jd_fresnel_fit(double eta, float ab[2])
      * a = 1 + b / 21, and t - 1 = b g with g = 1/21 - x^5, solved for b by
      * least squares weighted as the mean weighs (by mu). One pass over T:
      * sum mu g (T / Tmean - 1) = sum(mu g T) / Tmean - sum(mu g), and Tmean
-     * is the same pass's 2 sum(mu T) / N. It runs each frame (the scene's
-     * view): a few microseconds. */
+     * is the same pass's 2 sum(mu T) / N: a few microseconds, which the
+     * renderer spends only when eta changes. */
     double mean = 0, mgt = 0, mg = 0, den = 0;
     for (int i = 0; i < FRESNEL_POINTS; i++) {
         double mu = (i + 0.5) / FRESNEL_POINTS, x = 1.0 - mu, g = 1.0 / 21.0 - x * x * x * x * x;

@@ -148,6 +148,7 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     r->proxy_error = 0.87f * fmaxf(ext.x, fmaxf(ext.y, ext.z)) / radius / (float)d->proxy_cells;
     r->fit_key[0] = -1.0f;
     r->albedo_key[0] = -1.0f;
+    r->fresnel_eta = -1.0f;
     r->albedo = m->colors != NULL;
     for (uint32_t i = 0; r->albedo && m->texels && i < m->num_vertices && !r->albedo_partial; i++)
         r->albedo_partial = m->colors[4 * (size_t)i + 3] != 255;
@@ -379,7 +380,7 @@ static void albedo_reach(jd_renderer *r, const jd_scene *s, frame_params *f)
     f->albedo_reach = (float)(r->albedo_reach_mm / f->mm_per_world * f->px_per_world * jd_v3_len(f->eye));
 }
 
-static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f)
+static void frame_setup(jd_renderer *r, const jd_scene *s, frame_params *f)
 {
     /* A panel mounted at 90 or 270 degrees shows the picture sideways: the
      * camera sees the rotated aspect and clip space turns to meet the panel. */
@@ -420,7 +421,14 @@ static void frame_setup(const jd_renderer *r, const jd_scene *s, frame_params *f
     double mean_ss = o.mean_sigma_s;
     f->range_mm = 2.0f * f->mm_per_world;
     f->f0 = sv.f0;
-    memcpy(f->fresnel, sv.fresnel, sizeof f->fresnel);
+    /* full's Fresnel factor: the fit (256 points of the true curve, a few
+     * microseconds of double arithmetic, thirty times the dipole's set-up)
+     * is made again only when eta changes, not every frame. */
+    if (sv.eta != r->fresnel_eta) {
+        r->fresnel_eta = sv.eta;
+        jd_fresnel_fit(sv.eta, r->fresnel);
+    }
+    memcpy(f->fresnel, r->fresnel, sizeof f->fresnel);
     f->shading[0] = s->ambient;
     f->shading[1] = s->specular;
     f->shading[2] = sv.shininess;

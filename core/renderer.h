@@ -96,7 +96,6 @@ typedef struct jd_scene_view {
     jd_vec3 light_dir;    /* unit, towards the (directional) light */
     float eta, f0;        /* refractive index, Schlick's F0 */
     float shininess, exposure;
-    float fresnel[2];     /* jd_fresnel_fit at eta: the full mode's Fresnel factor */
 } jd_scene_view;
 /* aspect: width / height of the picture as the camera sees it. */
 void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, float aspect, jd_scene_view *v);

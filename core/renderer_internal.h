@@ -123,6 +123,7 @@ struct jd_renderer {
     int albedo_w, albedo_h;
     size_t albedo_bytes;
     float albedo_key[8], albedo_reach_mm; /* the material the entry's radius was found for, and it */
+    float fresnel_eta, fresnel[2]; /* the eta full's Fresnel factor was fitted at, and the fit */
     timer_query tq;
     uint8_t *tail_px;     /* TAIL_SIZE RGBA texels, rebuilt when the material changes */
     float tail_key[9];

@@ -91,7 +91,6 @@ void jd_scene_view_of(const jd_scene *s, const jd_mesh *m, float aspect, jd_scen
     v->eta = s->eta > 0.5f ? s->eta : 1.3f;
     float f0 = (v->eta - 1.0f) / (v->eta + 1.0f);
     v->f0 = f0 * f0;
-    jd_fresnel_fit(v->eta, v->fresnel);
     v->shininess = s->shininess > 1 ? s->shininess : 1;
     v->exposure = s->exposure > 0 ? s->exposure : 1;
 }
