@@ -81,8 +81,10 @@ static void update_slab(jd_renderer *r, const frame_params *f)
     double kg[SLAB_SIZE], kc[SLAB_SIZE];
     for (int n = 0; n < 3; n++) {
         int c = (n + 1) % 3;
-        double a, b, rd = f->dipole.rd_total[c], wide = 0.0;
-        for (int k = 0; k < r->diff_levels; k++) wide += fit->weight[DIFF_LOCAL + k][c];
+        /* On a lit face half of the first level's weight rides with the
+         * local part (jd_diffused), so the levels' light holds the other half. */
+        double a, b, rd = f->dipole.rd_total[c], wide = r->diff_levels > 0 ? 0.5 * fit->weight[DIFF_LOCAL][c] : 0.0;
+        for (int k = 1; k < r->diff_levels; k++) wide += fit->weight[DIFF_LOCAL + k][c];
         for (int i = 0; i < SLAB_SIZE; i++)
             kc[i] = c == 1 ? refl[c][i] : wide > 0.0 ? (refl[c][i] * rd - (rd - wide) * kg[i]) / wide : 1.0;
         fit_keep(dd, kc, SLAB_SIZE, &a, &b);

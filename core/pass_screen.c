@@ -32,6 +32,12 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         const jd_diffusion_fit *fit = &r->fit;
         for (int c = 0; c < 3; c++)
             for (int k = 0; k < DIFF_LOCAL; k++) wl[c] += fit->weight[k][c];
+        /* On a lit point half of the first level's Gaussian is taken with
+         * the local part, from the point's own light (half its weight added
+         * here); the level's read keeps the other half there and all of it
+         * where the point leaves the light (light.glsl, jd_diffused). */
+        if (r->diff_levels > 0)
+            for (int c = 0; c < 3; c++) wl[c] += 0.5f * fit->weight[DIFF_LOCAL][c];
         for (int k = 0; k < DIFF_LEVELS; k++) {
             for (int c = 0; c < 3; c++) lw[k][c] = k < r->diff_levels ? fit->weight[DIFF_LOCAL + k][c] : 0.0f;
             /* Light-depth units to the level's sigma * sqrt(2), in millimetres,

@@ -221,11 +221,19 @@ vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float sca
 // level's Gaussian (w, per channel) times the level's light. The two
 // narrowest levels are read texel by texel (d: the first one's texel size,
 // the second's twice that); the wider ones forgive a filtered depth and
-// take one filtered read.
+// take one filtered read. On a lit point half of the first level's
+// Gaussian (a level texel wide) is taken by the local part, from the point's
+// own light (that half's weight is there, pass_screen.c); the level gives
+// the other half there, and all of it as the point leaves the light
+// (lit < 1: a shadow, the terminator, a face turned away). Read texel by
+// texel, the level's grid, which turns with the light, makes a still
+// object's lit pixels pop from frame to frame; taking all of it locally
+// pops less still but sharpens the shadow's edge and moves full away from
+// Cycles on the held-out meshes (docs/quality.md, "Artifacts, measured").
 vec3 jd_diffused(sampler2D lv0, sampler2D lv1, sampler2D lv2, sampler2D lv3, sampler2D lv4, vec3 p, vec3 w[5],
                  vec3 s[2], float d, float slack, float lit)
 {
-    return (21.0 / 20.0) * (w[0] * jd_level_at(lv0, p, d, s[0].x, slack, lit)
+    return (21.0 / 20.0) * (w[0] * (1.0 - 0.5 * max(lit, 0.0)) * jd_level_at(lv0, p, d, s[0].x, slack, lit)
                           + w[1] * jd_level_at(lv1, p, 2.0 * d, s[0].y, slack, lit)
                           + w[2] * jd_level(texture2D(lv2, p.xy), p, s[0].z, slack, lit)
                           + w[3] * jd_level(texture2D(lv3, p.xy), p, s[1].x, slack, lit)

@@ -72,7 +72,12 @@ for az in -60 -75 dense-60; do
         # a texel of depth, not 0.35 (light.glsl, jd_soft_lit): 2.36 /
         # 0.083, 2.39 / 0.109, 2.36 / 0.081, mali400 2.39 / 0.094, 2.48 /
         # 0.117, 2.40 / 0.095: the stray's goal met in all six; the bound
-        # is the worst of them with a tenth to spare.
+        # is the worst of them with a tenth to spare. Since half of the
+        # first level rides with the local part on lit points (light.glsl,
+        # jd_diffused): 2.16 / 0.096, 2.13 / 0.104, 2.16 / 0.095, mali400
+        # 2.20 / 0.100, 2.27 / 0.119, 2.21 / 0.099 (the goal missed by
+        # 0.001 mm at -60 on mali400; all of the level taken so: 1.98 /
+        # 0.102, docs/quality.md).
         if awk -v w="$w" -v r="$rw" 'BEGIN { exit !(w >= 0.67 * r && w <= 1.33 * r) }'; then ok "$p: edge $w mm wide, the reference's $rw"
         else bad "$p: edge $w mm wide, the reference's $rw (the goal: within a third)"; fi
         if awk -v s="$s" 'BEGIN { exit !(s != "" && s <= 0.13) }'; then
