@@ -1,9 +1,14 @@
 /* uinput_touch HOLD_MS: a virtual touch screen through /dev/uinput (Linux),
- * as a kiosk's panel would be: it appears, waits HOLD_MS for the program
- * under test to find it, swipes a finger from the left third to the right
- * third of the screen over half a second, lifts it, waits HOLD_MS again and
- * goes. For tools/kms-test.sh's guest; needs root (or /dev/uinput access). */
+ * as a kiosk's panel would be: it appears, waits for SIGUSR1 (the program
+ * under test has found it and draws), at most HOLD_MS, swipes a finger from
+ * the left third to the right third of the screen over half a second,
+ * lifts it, waits HOLD_MS again and goes. It waited a fixed time before:
+ * under TCG on a slow host the kiosk took longer than that to start, and
+ * the swipe went by unseen. For tools/kms-test.sh's guest; needs root (or
+ * /dev/uinput access). */
+#define _POSIX_C_SOURCE 200112L
 #include <fcntl.h>
+#include <signal.h>
 #include <linux/uinput.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -43,6 +48,12 @@ static void axis(int code, int max)
 int main(int argc, char **argv)
 {
     int hold = argc > 1 ? atoi(argv[1]) : 3000;
+    /* Blocked before the device appears, so that a signal sent as soon as
+     * it is found waits for sigtimedwait instead of ending the program. */
+    sigset_t go;
+    sigemptyset(&go);
+    sigaddset(&go, SIGUSR1);
+    sigprocmask(SIG_BLOCK, &go, NULL);
     fd = open("/dev/uinput", O_WRONLY | O_NONBLOCK);
     if (fd < 0) { perror("uinput_touch: /dev/uinput"); return 1; }
     ioctl(fd, UI_SET_EVBIT, EV_KEY);
@@ -71,9 +82,10 @@ int main(int argc, char **argv)
         perror("uinput_touch: create");
         return 1;
     }
-    printf("uinput_touch: touch screen created, waiting %d ms\n", hold);
+    printf("uinput_touch: touch screen created, waiting for SIGUSR1 (at most %d ms)\n", hold);
     fflush(stdout);
-    sleep_ms(hold);
+    struct timespec ts = {hold / 1000, (long)(hold % 1000) * 1000000L};
+    if (sigtimedwait(&go, NULL, &ts) < 0) printf("uinput_touch: no SIGUSR1 in %d ms: swiping anyway\n", hold);
     for (int i = 0; i <= 20; i++) {
         int x = 340 + i * 17, y = 384;
         if (i == 0) {
