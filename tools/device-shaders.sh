@@ -105,8 +105,8 @@ run_driver() { # NAME PROFILE SHIM ENV... (PROFILE "-": none, the device's own l
     # trip count of 1 and of 2 (jade info --unroll-loops): what one more
     # trip costs, for the frame-cost model (core/frame_cost.c). The
     # drivers run side by side, as many at a time as there are cores (each
-    # is one single-threaded process: 33 of them one after another took 5
-    # minutes of CI's time).
+    # is one single-threaded process: the 33 took 38 s so on 2 cores, about
+    # 70 s of CPU one after another, 2026-11-29).
     [ "$running" -lt "$cores" ] || { wait; running=0; }
     running=$((running + 1))
     for unroll in 0 1 2; do
