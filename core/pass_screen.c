@@ -39,7 +39,10 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         if (r->diff_levels > 0)
             for (int c = 0; c < 3; c++) wl[c] += 0.5f * fit->weight[DIFF_LOCAL][c];
         for (int k = 0; k < DIFF_LEVELS; k++) {
-            for (int c = 0; c < 3; c++) lw[k][c] = k < r->diff_levels ? fit->weight[DIFF_LOCAL + k][c] : 0.0f;
+            /* Times the 21/20 the levels' light was divided by, and the
+             * first level's halved: jd_diffused takes (2 - lit) of it. */
+            float x = 21.0f / 20.0f * (k == 0 ? 0.5f : 1.0f);
+            for (int c = 0; c < 3; c++) lw[k][c] = k < r->diff_levels ? x * fit->weight[DIFF_LOCAL + k][c] : 0.0f;
             /* Light-depth units to the level's sigma * sqrt(2), in millimetres,
              * times sqrt(log2 e): the shaders take exp2 (light.glsl). */
             ls[k] = 1.20112241f * 2.0f * f->mm_per_world / (1.41421356f * fit->sigma_mm[DIFF_LOCAL + k]);

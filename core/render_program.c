@@ -328,7 +328,7 @@ static jd_result build_full(jd_renderer *r, jd_error *err)
          * as straight code where the GPU can hold it: each trip of the two
          * loops cost lima 75 words, 32 of them the loops' own tests and
          * branches, so 4 trips took 408 words a fragment where the code
-         * unrolled takes 276 (3:7 spills); Midgard 264 -> 126 bundles.
+         * unrolled takes 273 (3:7 spills); Midgard 264 -> 126 bundles.
          * Vivante GC400-GC2000 keep the loop: unrolled it does not fit
          * their 256 instructions. */
         r->wide_unrolled = !r->d.caps->max_program_instructions;

@@ -218,7 +218,8 @@ vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float sca
 }
 
 // The levels' sum at light-map position p (xy, depth): Rd's weight on each
-// level's Gaussian (w, per channel) times the level's light. The two
+// level's Gaussian (w, per channel, times the 21/20 the levels were divided
+// by, pass_screen.c) times the level's light. The two
 // narrowest levels are read texel by texel (d: the first one's texel size,
 // the second's twice that); the wider ones forgive a filtered depth and
 // take one filtered read. On a lit point half of the first level's
@@ -233,9 +234,12 @@ vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float sca
 vec3 jd_diffused(sampler2D lv0, sampler2D lv1, sampler2D lv2, sampler2D lv3, sampler2D lv4, vec3 p, vec3 w[5],
                  vec3 s[2], float d, float slack, float lit)
 {
-    return (21.0 / 20.0) * (w[0] * (1.0 - 0.5 * max(lit, 0.0)) * jd_level_at(lv0, p, d, s[0].x, slack, lit)
-                          + w[1] * jd_level_at(lv1, p, 2.0 * d, s[0].y, slack, lit)
-                          + w[2] * jd_level(texture2D(lv2, p.xy), p, s[0].z, slack, lit)
-                          + w[3] * jd_level(texture2D(lv3, p.xy), p, s[1].x, slack, lit)
-                          + w[4] * jd_level(texture2D(lv4, p.xy), p, s[1].y, slack, lit));
+    // w[0] comes halved (pass_screen.c): (2 - lit) w[0] / 2 is the share
+    // above with a multiply fewer. With the 21/20 in w as well, lima's wide
+    // pass 276 -> 273 words a fragment.
+    return w[0] * jd_level_at(lv0, p, d, s[0].x, slack, lit) * (2.0 - max(lit, 0.0))
+         + w[1] * jd_level_at(lv1, p, 2.0 * d, s[0].y, slack, lit)
+         + w[2] * jd_level(texture2D(lv2, p.xy), p, s[0].z, slack, lit)
+         + w[3] * jd_level(texture2D(lv3, p.xy), p, s[1].x, slack, lit)
+         + w[4] * jd_level(texture2D(lv4, p.xy), p, s[1].y, slack, lit);
 }
