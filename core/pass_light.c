@@ -83,7 +83,7 @@ static void update_slab(jd_renderer *r, const frame_params *f)
         int c = (n + 1) % 3;
         /* On a lit face half of the first level's weight rides with the
          * local part (jd_diffused), so the levels' light holds the other half. */
-        double a, b, rd = f->dipole.rd_total[c], wide = r->diff_levels > 0 ? 0.5 * fit->weight[DIFF_LOCAL][c] : 0.0;
+        double a, b, rd = f->dipole.rd_total[c], wide = r->diff_levels > 0 ? DIFF_FIRST_SHARED * fit->weight[DIFF_LOCAL][c] : 0.0;
         for (int k = 1; k < r->diff_levels; k++) wide += fit->weight[DIFF_LOCAL + k][c];
         for (int i = 0; i < SLAB_SIZE; i++)
             kc[i] = c == 1 ? refl[c][i] : wide > 0.0 ? (refl[c][i] * rd - (rd - wide) * kg[i]) / wide : 1.0;

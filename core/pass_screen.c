@@ -37,11 +37,11 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
          * here); the level's read keeps the other half there and all of it
          * where the point leaves the light (light.glsl, jd_diffused). */
         if (r->diff_levels > 0)
-            for (int c = 0; c < 3; c++) wl[c] += 0.5f * fit->weight[DIFF_LOCAL][c];
+            for (int c = 0; c < 3; c++) wl[c] += DIFF_FIRST_SHARED * fit->weight[DIFF_LOCAL][c];
         for (int k = 0; k < DIFF_LEVELS; k++) {
             /* Times the 21/20 the levels' light was divided by, and the
-             * first level's halved: jd_diffused takes (2 - lit) of it. */
-            float x = 21.0f / 20.0f * (k == 0 ? 0.5f : 1.0f);
+             * first level's times its share: jd_diffused takes (2 - lit) of it. */
+            float x = 21.0f / 20.0f * (k == 0 ? DIFF_FIRST_SHARED : 1.0f);
             for (int c = 0; c < 3; c++) lw[k][c] = k < r->diff_levels ? x * fit->weight[DIFF_LOCAL + k][c] : 0.0f;
             /* Light-depth units to the level's sigma * sqrt(2), in millimetres,
              * times sqrt(log2 e): the shaders take exp2 (light.glsl). */

@@ -32,6 +32,11 @@
 #define DIFF_TAPS 6
 /* Rd's Gaussians finer than a level texel are applied at the shaded point. */
 #define DIFF_LOCAL 3
+/* On a lit point this share of the first level's weight is taken with the
+ * local part, the rest from the level (light.glsl, jd_diffused, which gets
+ * the level's weight times the share and takes 1 / share - lit of it: its
+ * 2.0 is this share's reciprocal). */
+#define DIFF_FIRST_SHARED 0.5f
 
 /* Render targets are power-of-two textures (some ES 2.0 drivers cannot
  * render to NPOT ones); w x h is the region in use, set by the viewport. */
