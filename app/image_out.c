@@ -28,6 +28,29 @@ void jd_output_protect(const char *path)
     num_inputs++;
 }
 
+int jd_frame_name(const char *pattern, long frame, char *name, size_t cap, jd_error *err)
+{
+    const char *pc = strchr(pattern, '%');
+    if (!pc) {
+        if (snprintf(name, cap, "%s", pattern) >= (int)cap) goto too_long;
+        return 0;
+    }
+    /* Parsed here, never handed to printf: a name is not a format. */
+    const char *p = pc + 1;
+    int zero = 0, width = 0;
+    if (*p == '0' && p[1] >= '1' && p[1] <= '9') { zero = 1; width = p[1] - '0'; p += 2; }
+    if (*p != 'd' || strchr(p + 1, '%')) {
+        jd_fail(err, JD_ERR_ARG, "%s: a %% in the name numbers the frames, once, as %%d or %%0Nd (N 1-9)", pattern);
+        return -1;
+    }
+    if (snprintf(name, cap, "%.*s%0*ld%s", (int)(pc - pattern), pattern, zero ? width : 0, frame, p + 1) >= (int)cap)
+        goto too_long;
+    return 1;
+too_long:
+    jd_fail(err, JD_ERR_ARG, "%s: the name is too long", pattern);
+    return -1;
+}
+
 /* The folder that holds `path`, for the new file and the final fsync. */
 static void parent_dir(const char *path, char *dir, size_t cap)
 {

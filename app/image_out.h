@@ -5,6 +5,7 @@
  * inputs, nor through a symbolic link. */
 #ifndef JD_IMAGE_OUT_H
 #define JD_IMAGE_OUT_H
+#include <stddef.h>
 #include <stdint.h>
 #include "jd_result.h"
 /* A picture of w*h RGBA pixels: JPEG (quality 92) when the name ends in .jpg
@@ -14,6 +15,10 @@ jd_result jd_png_write(const char *path, int w, int h, const uint8_t *rgba, jd_e
 typedef enum { JD_PICTURE_NONE, JD_PICTURE_PNG, JD_PICTURE_JPEG } jd_picture_kind;
 /* What jd_png_write would write to `path`; JD_PICTURE_NONE and a reason. */
 jd_picture_kind jd_picture_kind_of(const char *path, jd_error *err);
+/* A sequence's picture name: `pattern` with its one %d or %0Nd (N 1-9)
+ * replaced by `frame`. 0 and `name` = `pattern` when it has no %; -1 and a
+ * reason when it has another % or more than one, or the name is too long. */
+int jd_frame_name(const char *pattern, long frame, char *name, size_t cap, jd_error *err);
 /* Little-endian colour PFM of w*h*3 floats given top row first (PFM files
  * store the bottom row first). */
 jd_result jd_pfm_write(const char *path, int w, int h, const float *rgb, jd_error *err);

@@ -35,7 +35,8 @@ typedef struct opt {
 #define K JD_OPT_KIOSK
 static const opt table[] = {
     {"--mesh", T_PATH, OFF(mesh), 0, 0, S, "FILE       Draco, glTF/GLB, OBJ, PLY or STL mesh, told apart by content [the default asset]"},
-    {"--out", T_PATH, OFF(out), 0, 0, RO | JD_OPT_REFERENCE, "FILE.png   output image, PNG, or JPEG when named .jpg [jade.png]"},
+    {"--out", T_PATH, OFF(out), 0, 0, RO | JD_OPT_REFERENCE,
+     "FILE.png   output image, PNG, or JPEG when named .jpg [jade.png]; render: %d or %0Nd numbers the frames (from 0)"},
     {"--sheet", T_PATH, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual | full side by side, labelled"},
     {"--sheet-reference", T_PATH, OFF(sheet_ref), 0, 0, RO, "FILE.png   with --sheet: a reference picture as the first panel"},
     {"--pfm", T_PATH, OFF(pfm), 0, 0, JD_OPT_REFERENCE, "FILE.pfm   also write the linear picture (before the tone curve)"},
@@ -114,6 +115,8 @@ static const opt table[] = {
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
     {"--light-speed", T_FLOAT, OFF(light_speed), -3600, 3600, K,
      "DEG/S      the light's orbit [30: once every 12 s]; 0: still, and the light-space passes are reused"},
+    {"--light-step", T_FLOAT, OFF(light_step), -360, 360, RO,
+     "DEG        render: the light turns DEG from one frame to the next [0]; with %d in --out every frame is written"},
     {"--log-every", T_FLOAT, OFF(log_every), 0, 86400, K | B,
      "S          a health line every S seconds: frames, frame times, missed vblanks, memory, fds, GL names [0: off]"},
     {"--cycle-materials", T_FLAG, OFF(cycle_materials), 0, 0, B, "           bench: a different material every 10 frames (soak tests)"},

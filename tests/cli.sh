@@ -176,6 +176,18 @@ check "the symlink's target is intact" '[ "$(cat "$tmp/target")" = keep ]'
 expect "sheet leaves --out alone" 0 "wrote" -- "$jade" render --size 32x32 --out /dev/null --sheet "$tmp/s2.png"
 check "/dev/null is still a device after the sheet" '[ -c /dev/null ]'
 expect "reference out onto a device" 1 "not a regular file" -- "$jade" reference --size 16x16 --quiet --out /dev/null
+# A sequence (--light-step, a %d in --out): every frame under its number,
+# each the picture one run would draw at its light (tests/flicker.sh relies
+# on that); a name refused before the first frame writes none.
+expect "a sequence" 0 "wrote $tmp/seq00.png to $tmp/seq02.png (3 frames" -- "$jade" render --size 32x32 --light-azimuth 140 --light-step 10 --frames 3 --out "$tmp/seq%02d.png"
+expect "the sequence's last light in one run" 0 "wrote" -- "$jade" render --size 32x32 --light-azimuth 160 --out "$tmp/seq160.png"
+check "frame 2 is the picture at 160 degrees" 'cmp -s "$tmp/seq02.png" "$tmp/seq160.png"'
+check "the light turned between frames" '! cmp -s "$tmp/seq00.png" "$tmp/seq01.png"'
+expect "a % that is not a number" 1 "numbers the frames, once, as %d or %0Nd" -- "$jade" render --size 32x32 --out "$tmp/x%s.png"
+expect "two numbers" 1 "numbers the frames, once" -- "$jade" render --size 32x32 --frames 2 --out "$tmp/x%d-%d.png"
+ln -s "$tmp/target" "$tmp/lk1.png"
+expect "a sequence's frame through a symlink" 1 "lk1.png: is a symbolic link" -- "$jade" render --size 32x32 --frames 3 --out "$tmp/lk%d.png"
+check "nothing of it written" '[ ! -e "$tmp/lk0.png" ] && [ "$(cat "$tmp/target")" = keep ]'
 mkfifo "$tmp/fifo"
 expect "mesh is a FIFO" 1 "not a regular file" -- timeout 10 "$jade" render --mesh "$tmp/fifo" --out "$tmp/x.png"
 expect "metric input is a FIFO" 1 "not a regular file" -- timeout 10 "$jade" metric "$tmp/fifo" "$tmp/fifo"
