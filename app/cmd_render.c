@@ -1,3 +1,4 @@
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -35,12 +36,8 @@ int jd_cmd_render(int argc, char **argv)
      * --out every frame is written under its number, else the last only.
      * The names are checked before the first frame, as the session checked
      * --out's. */
-    char name[4096];
-    int sequence = o.out ? jd_frame_name(o.out, 0, name, sizeof name, &err) : 0;
-    for (int i = 0; sequence > 0 && i < o.frames; i++) {
-        jd_frame_name(o.out, i, name, sizeof name, &err);
-        if (jd_output_check(name, &err)) sequence = -1;
-    }
+    char name[PATH_MAX];
+    int sequence = jd_frame_names_check(o.out, o.frames, &err);
     if (sequence < 0) {
         fprintf(stderr, "jade render: %s\n", err.msg);
         jd_session_close(&s);
@@ -51,9 +48,7 @@ int jd_cmd_render(int argc, char **argv)
      * JITs them): the time reported is a steady frame's. */
     double first_ms = 0, frame_ms = 0, read_ms = 0;
     for (int i = -1; i < o.frames; i++) {
-        /* In double, rounded once: frame i is the picture of a run given
-         * the azimuth azimuth + i step, bit for bit (tests/cli.sh). */
-        o.scene.light_azimuth = (float)((double)azimuth + (double)o.light_step * (i < 0 ? 0 : i));
+        o.scene.light_azimuth = jd_options_light_at(azimuth, o.light_step, i < 0 ? 0 : i);
         double t0 = jd_clock_ms();
         if (jd_renderer_frame(s.renderer, &o.scene, NULL, &err)) {
             fprintf(stderr, "jade render: %s\n", err.msg);
@@ -80,10 +75,10 @@ int jd_cmd_render(int argc, char **argv)
     }
     jd_renderer_info info;
     jd_renderer_get_info(s.renderer, &info);
-    char tri[80], last[4096];
+    char tri[80], last[PATH_MAX];
     jd_frame_name(o.out, o.frames - 1, last, sizeof last, &err);
     jd_frame_name(o.out, 0, name, sizeof name, &err);
-    if (sequence)
+    if (sequence && o.frames > 1)
         printf("wrote %s to %s (%d frames, the light turning %g degrees a frame; ", name, last, o.frames,
                (double)o.light_step);
     else

@@ -51,6 +51,15 @@ too_long:
     return -1;
 }
 
+int jd_frame_names_check(const char *pattern, long frames, jd_error *err)
+{
+    char name[PATH_MAX];
+    int sequence = pattern ? jd_frame_name(pattern, 0, name, sizeof name, err) : 0;
+    for (long i = 0; sequence > 0 && i < frames; i++)
+        if (jd_frame_name(pattern, i, name, sizeof name, err) < 0 || jd_output_check(name, err)) sequence = -1;
+    return sequence;
+}
+
 /* The folder that holds `path`, for the new file and the final fsync. */
 static void parent_dir(const char *path, char *dir, size_t cap)
 {

@@ -19,6 +19,10 @@ jd_picture_kind jd_picture_kind_of(const char *path, jd_error *err);
  * replaced by `frame`. 0 and `name` = `pattern` when it has no %; -1 and a
  * reason when it has another % or more than one, or the name is too long. */
 int jd_frame_name(const char *pattern, long frame, char *name, size_t cap, jd_error *err);
+/* jd_frame_name for frames 0 to frames - 1, each name checked as
+ * jd_output_check does, before any work: 1 for a sequence, 0 for one
+ * name (not checked here), -1 and a reason. */
+int jd_frame_names_check(const char *pattern, long frames, jd_error *err);
 /* Little-endian colour PFM of w*h*3 floats given top row first (PFM files
  * store the bottom row first). */
 jd_result jd_pfm_write(const char *path, int w, int h, const float *rgb, jd_error *err);

@@ -36,7 +36,7 @@ typedef struct opt {
 static const opt table[] = {
     {"--mesh", T_PATH, OFF(mesh), 0, 0, S, "FILE       Draco, glTF/GLB, OBJ, PLY or STL mesh, told apart by content [the default asset]"},
     {"--out", T_PATH, OFF(out), 0, 0, RO | JD_OPT_REFERENCE,
-     "FILE.png   output image, PNG, or JPEG when named .jpg [jade.png]; render: %d or %0Nd numbers the frames (from 0)"},
+     "FILE.png   output image, PNG, or JPEG when named .jpg [jade.png]; %d or %0Nd numbers the frames (from 0)"},
     {"--sheet", T_PATH, OFF(sheet), 0, 0, RO, "FILE.png   none | single | dual | full side by side, labelled"},
     {"--sheet-reference", T_PATH, OFF(sheet_ref), 0, 0, RO, "FILE.png   with --sheet: a reference picture as the first panel"},
     {"--pfm", T_PATH, OFF(pfm), 0, 0, JD_OPT_REFERENCE, "FILE.pfm   also write the linear picture (before the tone curve)"},
@@ -67,7 +67,7 @@ static const opt table[] = {
     {"--gpu-enlarge", T_FLAG, OFF(gpu_enlarge), 0, 0, K, "           the GPU enlarges the tier's smaller picture even where the display engine's scaler could"},
     {"--rotate", T_INT, OFF(rotation), 0, 270, K | RO, "DEG        0, 90, 180 or 270, counter-clockwise as DRM (portrait panels) [0]"},
     {"--size", T_SIZE, 0, 16, 4096, RO | V | K | B | JD_OPT_REFERENCE, "WxH        image or window size (drm: the mode) [512x512]"},
-    {"--frames", T_INT, OFF(frames), 1, 100000000, R | B, "N          frames [render 1, bench 200, view/kiosk: until closed]"},
+    {"--frames", T_INT, OFF(frames), 1, 100000000, R | B | JD_OPT_REFERENCE, "N          frames [render, reference 1, bench 200, view/kiosk: until closed]"},
     {"--mode", T_MODE, OFF(mode_list), 0, 0, R | B, "M          none|single|dual|full [full]; bench also all [bench: all]"},
     {"--material", T_STR, OFF(material), 0, 0, S, "NAME       measured material (jade info --materials) [the file's glTF extras.jade_material, else marble]"},
     {"--sigma-s", T_FLOAT3, OFF(scene.sigma_s), 0, 1000, S, "R,G,B      reduced scattering, mm^-1"},
@@ -115,8 +115,8 @@ static const opt table[] = {
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
     {"--light-speed", T_FLOAT, OFF(light_speed), -3600, 3600, K,
      "DEG/S      the light's orbit [30: once every 12 s]; 0: still, and the light-space passes are reused"},
-    {"--light-step", T_FLOAT, OFF(light_step), -360, 360, RO,
-     "DEG        render: the light turns DEG from one frame to the next [0]; with %d in --out every frame is written"},
+    {"--light-step", T_FLOAT, OFF(light_step), -360, 360, RO | JD_OPT_REFERENCE,
+     "DEG        the light turns DEG from one frame to the next [0]; with %d in --out every frame is written"},
     {"--log-every", T_FLOAT, OFF(log_every), 0, 86400, K | B,
      "S          a health line every S seconds: frames, frame times, missed vblanks, memory, fds, GL names [0: off]"},
     {"--cycle-materials", T_FLAG, OFF(cycle_materials), 0, 0, B, "           bench: a different material every 10 frames (soak tests)"},
@@ -130,6 +130,11 @@ static const opt table[] = {
 #undef RO
 #undef V
 #undef K
+
+float jd_options_light_at(float azimuth, float step, long frame)
+{
+    return (float)((double)azimuth + (double)step * (double)frame);
+}
 
 void jd_options_defaults(jd_options *o)
 {

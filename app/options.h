@@ -61,6 +61,9 @@ enum { JD_OPT_RENDER = 1, JD_OPT_BENCH = 2, JD_OPT_INFO = 4, JD_OPT_VIEW = 8, JD
        JD_OPT_CONVERT = 128 };
 
 void jd_options_defaults(jd_options *o);
+/* Frame `frame`'s light azimuth with --light-step: in double, rounded once,
+ * so that it is the picture of a run given that azimuth, bit for bit. */
+float jd_options_light_at(float azimuth, float step, long frame);
 /* Parses argv[first..argc); prints a one-line error and returns 0 on bad input.
  * Returns -1 after printing help. */
 int jd_options_parse(jd_options *o, int command, const char *cmdname, int argc, char **argv, int first);

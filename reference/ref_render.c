@@ -57,6 +57,12 @@ struct jd_ref {
     float light[3];
     jd_ref_stats st;
     float *ind;          /* per sample, the light other parts of the object send it (desc.bounces), or NULL */
+    /* The samples as placed, in world units and in their first order (the
+     * lighting turns them to millimetres, the octrees reorder them): each
+     * lighting (jd_ref_relight too) and each bounce round starts again from
+     * these. */
+    jd_ref_point *placed;
+    uint32_t n;
 };
 
 /* ---- work spread over threads --------------------------------------- */
@@ -444,6 +450,42 @@ static void bounce_chunk(void *ctx, long b, long e, uint64_t *evals)
     }
 }
 
+/* The samples lit from r->light, then the light between parts (desc.bounces
+ * rounds), then the octrees: from the samples as placed, so that lighting
+ * again from another direction gives what a new jd_ref does. */
+static jd_result light_all(jd_ref *r, jd_error *err)
+{
+    uint32_t n = r->n;
+    memcpy(r->pts, r->placed, sizeof *r->placed * n);
+    if (r->ind) memset(r->ind, 0, 3 * (size_t)n * sizeof *r->ind);
+    r->st.irradiance_ms = r->st.tree_ms = r->st.bounce_ms = 0;
+    float error = r->d.error > 0 ? r->d.error : 0.01f;
+    jd_result res;
+    for (int round = 0;; round++) {
+        res = light_samples(r, n, error, r->d.progress, err);
+        if (res || round >= r->d.bounces) break;
+        double t2 = jd_clock_ms();
+        bounce_ctx bc = {r, r->placed};
+        par_run(r->st.threads, n, 512, bounce_chunk, &bc, "light between parts", r->d.progress);
+        memcpy(r->pts, r->placed, sizeof *r->placed * n);
+        r->st.bounce_ms += jd_clock_ms() - t2;
+    }
+    return res;
+}
+
+jd_result jd_ref_relight(jd_ref *r, float light_azimuth, jd_ref_stats *stats, jd_error *err)
+{
+    if (r->d.volume)
+        return jd_fail(err, JD_ERR_ARG, "the volume (--volume) is solved for one light: no sequence of lights");
+    r->d.scene.light_azimuth = light_azimuth;
+    jd_scene_view_of(&r->d.scene, r->d.mesh, (float)r->d.width / (float)r->d.height, &r->view);
+    jd_vec3 L = r->view.light_dir;
+    r->light[0] = L.x; r->light[1] = L.y; r->light[2] = L.z;
+    jd_result res = light_all(r, err);
+    if (!res && stats) *stats = r->st;
+    return res;
+}
+
 jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *stats, jd_error *err)
 {
     double t0 = jd_clock_ms();
@@ -585,31 +627,14 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     r->st.window_mm = desc->window_mm > 0 ? desc->window_mm : fmax(2.5, 3.0 * r->st.spacing_mm);
     r->st.setup_ms = jd_clock_ms() - t0;
 
-    /* The samples' world positions, kept where the object's light on
-     * itself is asked for: the octrees reorder the points, and each round
-     * lights them again from there. */
-    jd_ref_point *placed = NULL;
-    if (desc->bounces > 0) {
-        placed = malloc(sizeof *placed * n);
-        r->ind = calloc(3 * (size_t)n, sizeof *r->ind);
-        if (!placed || !r->ind) {
-            free(placed);
-            jd_ref_destroy(r);
-            return jd_fail(err, JD_ERR_BUDGET, "out of memory for the light of %u samples on each other", n);
-        }
-        memcpy(placed, r->pts, sizeof *placed * n);
+    r->n = n;
+    r->placed = malloc(sizeof *r->placed * n);
+    if (!r->placed || (desc->bounces > 0 && !(r->ind = calloc(3 * (size_t)n, sizeof *r->ind)))) {
+        jd_ref_destroy(r);
+        return jd_fail(err, JD_ERR_BUDGET, "out of memory for the light of %u samples on each other", n);
     }
-    float error = desc->error > 0 ? desc->error : 0.01f;
-    for (int round = 0;; round++) {
-        res = light_samples(r, n, error, desc->progress, err);
-        if (res || round >= desc->bounces) break;
-        double t2 = jd_clock_ms();
-        bounce_ctx bc = {r, placed};
-        par_run(r->st.threads, n, 512, bounce_chunk, &bc, "light between parts", desc->progress);
-        memcpy(r->pts, placed, sizeof *placed * n);
-        r->st.bounce_ms += jd_clock_ms() - t2;
-    }
-    free(placed);
+    memcpy(r->placed, r->pts, sizeof *r->placed * n);
+    res = light_all(r, err);
     if (res) { jd_ref_destroy(r); return res; }
     if (stats) *stats = r->st;
     *out = r;
@@ -641,6 +666,7 @@ void jd_ref_destroy(jd_ref *r)
     jd_volume_free(&r->vol);
     jd_bvh_free(&r->bvh);
     free(r->pos); free(r->nrm); free(r->tri); free(r->pts); free(r->pt_n); free(r->pt_alb); free(r->ind);
+    free(r->placed);
     free(r);
 }
 

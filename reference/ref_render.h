@@ -65,6 +65,11 @@ typedef struct jd_ref jd_ref;
 /* BVH, samples, their irradiance and the octree. */
 jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *stats, jd_error *err);
 void jd_ref_destroy(jd_ref *r);
+/* The same samples lit again with the light at another azimuth (the
+ * scene's elevation): afterwards jd_ref_render draws, bit for bit, what a
+ * jd_ref made with that azimuth draws, without placing the samples and
+ * tabulating the half-space again. Not for desc.volume. */
+jd_result jd_ref_relight(jd_ref *r, float light_azimuth, jd_ref_stats *stats, jd_error *err);
 /* Mo at a world point with outward normal n (no Fresnel, no specular). */
 void jd_ref_exitance(const jd_ref *r, const float p[3], const float n[3], float out[3]);
 /* The picture: linear colour (w*h*3, top row first, exposure applied, before

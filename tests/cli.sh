@@ -183,6 +183,12 @@ expect "a sequence" 0 "wrote $tmp/seq00.png to $tmp/seq02.png (3 frames" -- "$ja
 expect "the sequence's last light in one run" 0 "wrote" -- "$jade" render --size 32x32 --light-azimuth 160 --out "$tmp/seq160.png"
 check "frame 2 is the picture at 160 degrees" 'cmp -s "$tmp/seq02.png" "$tmp/seq160.png"'
 check "the light turned between frames" '! cmp -s "$tmp/seq00.png" "$tmp/seq01.png"'
+# The reference's sequence: its samples placed once (jd_ref_relight), each
+# frame the picture of a run of its own, with light between parts as well.
+expect "a reference sequence" 0 "wrote $tmp/rs0.png to $tmp/rs1.png" -- "$jade" reference --size 24x24 --samples 3000 --bounces 1 --light-azimuth 100 --light-step 30 --frames 2 --quiet --out "$tmp/rs%d.png"
+expect "its last light in one run" 0 "wrote" -- "$jade" reference --size 24x24 --samples 3000 --bounces 1 --light-azimuth 130 --quiet --out "$tmp/rs130.png"
+check "the reference's frame 1 is the picture at 130 degrees" 'cmp -s "$tmp/rs1.png" "$tmp/rs130.png"'
+expect "the volume's one light" 2 "--volume draws one frame" -- "$jade" reference --volume --frames 2 --size 16x16
 expect "a % that is not a number" 1 "numbers the frames, once, as %d or %0Nd" -- "$jade" render --size 32x32 --out "$tmp/x%s.png"
 expect "two numbers" 1 "numbers the frames, once" -- "$jade" render --size 32x32 --frames 2 --out "$tmp/x%d-%d.png"
 ln -s "$tmp/target" "$tmp/lk1.png"

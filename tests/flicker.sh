@@ -15,21 +15,17 @@
 jade=$1 measure=$2
 . "$(dirname "$0")/harness.sh"
 scene="--size 128x128 --specular 0 --light-elevation 35"
-# full and none as one run each, the light turning a degree a frame
-# (--light-step; every frame written by its number): the same pictures as
-# sixty runs, a frame each (tests/cli.sh holds that).
+# Each of the three as one run, the light turning a degree a frame
+# (--light-step, every frame written by its number): the same pictures as
+# sixty runs of a frame each (tests/cli.sh holds that; the reference places
+# its samples once, jd_ref_relight).
+# shellcheck disable=SC2086
+"$jade" reference $scene --light-azimuth 140 --light-step 1 --frames 60 --quiet --out "$tmp/ref%d.png" \
+    --mask "$tmp/mask.png" >/dev/null || bad "jade reference did not run"
 for m in none full; do
     # shellcheck disable=SC2086
     "$jade" render $scene --mode $m --antialias off --light-azimuth 140 --light-step 1 --frames 60 \
         --out "$tmp/$m%d.png" >/dev/null 2>&1 || bad "jade render --mode $m did not run"
-done
-i=0
-while [ $i -lt 60 ]; do
-    az=$((140 + i))
-    # shellcheck disable=SC2086
-    "$jade" reference $scene --light-azimuth $az --quiet --out "$tmp/ref$i.png" --mask "$tmp/mask.png" >/dev/null ||
-        { bad "jade reference did not run (azimuth $az)"; break; }
-    i=$((i + 1))
 done
 measure_seq() {
     # shellcheck disable=SC2046
