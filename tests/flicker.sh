@@ -12,28 +12,71 @@
 # inside (the pass, which only GPUs without multisampling run, took full's
 # jerk from 0.0151 to 0.0137 on llvmpipe; an NVIDIA GPU under 4x
 # multisampling gave 0.0155).
-jade=$1 measure=$2
+#
+# The reference's 60 frames took 208 s of CPU a run (nearly all of this
+# test), to give the same figure every time: they are made once, by
+# `tests/flicker.sh --update JADE MEASURE tests/golden` (tools/update-goldens.sh
+# runs it), which keeps the reference's measure (flicker_ref.json), its
+# object mask and its first three frames with their own measure
+# (flicker_ref3.json). Each run makes those three frames again (one run of
+# jade reference, the samples placed once, the second and third relit:
+# jd_ref_relight, which made the rest too) and holds them to the kept
+# ones, and measures the kept three again: a change to the reference, to
+# this orbit or to tests/flicker_measure.c fails here until they are made
+# again, and the figure with them.
+# Usage: flicker.sh JADE MEASURE GOLDEN_DIR IMGCMP (tests/CMakeLists.txt),
+#        flicker.sh --update JADE MEASURE GOLDEN_DIR
+update=0
+if [ "${1:-}" = --update ]; then update=1; shift; fi
+jade=$1 measure=$2 golden=$3 imgcmp=${4:-}
 . "$(dirname "$0")/harness.sh"
-scene="--size 128x128 --specular 0 --light-elevation 35"
-# Each of the three as one run, the light turning a degree a frame
-# (--light-step, every frame written by its number): the same pictures as
-# sixty runs of a frame each (tests/cli.sh holds that; the reference places
-# its samples once, jd_ref_relight).
+scene="--size 128x128 --specular 0 --light-elevation 35 --light-azimuth 140 --light-step 1"
+measure_seq() { # NAME N MASK: the N frames $tmp/NAME0.png...
+    # shellcheck disable=SC2046
+    "$measure" "$3" $(i=0; while [ $i -lt "$2" ]; do echo "$tmp/$1$i.png"; i=$((i + 1)); done)
+}
+if [ $update = 1 ]; then
+    # shellcheck disable=SC2086
+    "$jade" reference $scene --frames 60 --quiet --out "$tmp/ref%d.png" --mask "$tmp/mask.png" >/dev/null ||
+        { echo "flicker --update: jade reference did not run"; exit 1; }
+    measure_seq ref 60 "$tmp/mask.png" > "$golden/flicker_ref.json" || exit 1
+    for i in 0 1 2; do cp "$tmp/ref$i.png" "$golden/flicker_ref$i.png"; done
+    cp "$tmp/mask.png" "$golden/flicker_mask.png"
+    measure_seq ref 3 "$tmp/mask.png" > "$golden/flicker_ref3.json" || exit 1
+    echo "flicker --update: $(cat "$golden/flicker_ref.json")"
+    exit 0
+fi
 # shellcheck disable=SC2086
-"$jade" reference $scene --light-azimuth 140 --light-step 1 --frames 60 --quiet --out "$tmp/ref%d.png" \
-    --mask "$tmp/mask.png" >/dev/null || bad "jade reference did not run"
+"$jade" reference $scene --frames 3 --quiet --out "$tmp/now%d.png" --mask "$tmp/now_mask.png" >/dev/null ||
+    bad "jade reference did not run"
+# Within a level of 255 anywhere (another compiler's rounding), not bit
+# for bit.
+for f in 0 1 2 mask; do
+    case $f in mask) now=now_mask kept=flicker_mask ;; *) now=now$f kept=flicker_ref$f ;; esac
+    if "$imgcmp" "$tmp/$now.png" "$golden/$kept.png" --max-rmse 0.5 --max-bad-frac 0 --bad-threshold 1 \
+        >"$tmp/cmp.txt" 2>&1; then
+        ok "$kept.png is what jade reference makes today"
+    else
+        bad "$kept.png is not what jade reference makes today ($(tail -1 "$tmp/cmp.txt")): tools/update-goldens.sh makes the kept frames again"
+    fi
+done
+for i in 0 1 2; do cp "$golden/flicker_ref$i.png" "$tmp/kept$i.png"; done
+kept=$(measure_seq kept 3 "$golden/flicker_mask.png")
+if [ "$kept" = "$(cat "$golden/flicker_ref3.json")" ]; then ok "the kept frames measure as when they were made"
+else bad "the kept three frames measure $kept, not $(cat "$golden/flicker_ref3.json"): tests/flicker_measure.c changed? tools/update-goldens.sh"; fi
+# Each of the two as one run, the light turning a degree a frame
+# (--light-step, every frame written by its number): the same pictures as
+# sixty runs of a frame each (tests/cli.sh holds that; so does the
+# reference's, jd_ref_relight).
 for m in none full; do
     # shellcheck disable=SC2086
-    "$jade" render $scene --mode $m --antialias off --light-azimuth 140 --light-step 1 --frames 60 \
-        --out "$tmp/$m%d.png" >/dev/null 2>&1 || bad "jade render --mode $m did not run"
+    "$jade" render $scene --mode $m --antialias off --frames 60 --out "$tmp/$m%d.png" >/dev/null 2>&1 ||
+        bad "jade render --mode $m did not run"
 done
-measure_seq() {
-    # shellcheck disable=SC2046
-    "$measure" "$tmp/mask.png" $(i=0; while [ $i -lt 60 ]; do echo "$tmp/$1$i.png"; i=$((i + 1)); done)
-}
-m_ref=$(measure_seq ref) m_none=$(measure_seq none) m_full=$(measure_seq full)
+m_ref=$(cat "$golden/flicker_ref.json") m_none=$(measure_seq none 60 "$golden/flicker_mask.png")
+m_full=$(measure_seq full 60 "$golden/flicker_mask.png")
 ref=$(echo "$m_ref" | field jerk) none=$(echo "$m_none" | field jerk) full=$(echo "$m_full" | field jerk)
-echo "jerk (RMS of the second difference between frames, linear luminance): reference $ref, none $none, full $full"
+echo "jerk (RMS of the second difference between frames, linear luminance): reference $ref (its kept frames), none $none, full $full"
 # What 8 bits alone leave on smooth ramps (no sequence goes much below it),
 # and the share of the largest 1% of the second differences (a few edges
 # stepping: near 1; pops spread over the surface: small).

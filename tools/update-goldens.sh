@@ -15,4 +15,7 @@ for mode in none single dual full; do
     ./build/jade render --mesh assets/textured/pebble.gltf --out "tests/golden/pebble_${mode}.png" --size 256x256 \
         --mode "$mode" --light-azimuth 150 --light-elevation 30 --precision highp >/dev/null 2>&1
 done
+# The flicker test's reference frames (tests/flicker.sh keeps three of them,
+# the mask and the measure of all 60): about 2 minutes on 2 cores.
+sh tests/flicker.sh --update ./build/jade ./build/tests/flicker_measure tests/golden
 ls -la tests/golden
