@@ -45,7 +45,7 @@ typedef struct jd_options {
     int unroll_loops;    /* info --compile --unroll-loops N */
     const char *device;  /* bench --device: a board of the frame-cost model */
     float light_speed;   /* kiosk: degrees per second */
-    float light_step;    /* render: degrees the light turns from one frame to the next */
+    float light_step;    /* render, reference: degrees the light turns from one frame to the next */
     const char *config;  /* kiosk: the configuration file */
     float idle_s;        /* kiosk: seconds without input before the camera returns */
     int fullscreen;      /* set by the kiosk: a window platform fills the screen */

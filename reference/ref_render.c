@@ -629,7 +629,11 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
 
     r->n = n;
     r->placed = malloc(sizeof *r->placed * n);
-    if (!r->placed || (desc->bounces > 0 && !(r->ind = calloc(3 * (size_t)n, sizeof *r->ind)))) {
+    if (!r->placed) {
+        jd_ref_destroy(r);
+        return jd_fail(err, JD_ERR_BUDGET, "out of memory for a copy of %u samples as placed", n);
+    }
+    if (desc->bounces > 0 && !(r->ind = calloc(3 * (size_t)n, sizeof *r->ind))) {
         jd_ref_destroy(r);
         return jd_fail(err, JD_ERR_BUDGET, "out of memory for the light of %u samples on each other", n);
     }
