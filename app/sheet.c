@@ -10,6 +10,32 @@
 #include "image_in.h"
 #include "image_out.h"
 
+/* The panels' labels at one size: twice the font's where every one fits its
+ * panel, else the font's own; a label still too long for its panel loses
+ * the material's name, then its end (a label that ran on was drawn over the
+ * next one's, and a short one came out twice the size of its neighbours). */
+static void draw_labels(uint8_t *sheet, int sw, int sh, int w, int first, const char *material)
+{
+    static const char *modes[JD_MODE_COUNT] = {"NONE (DIRECT ONLY)", "SINGLE (SCCG 2006)", "DUAL FUNNEL", "FULL (DIFFUSED)"};
+    const uint8_t white[3] = {235, 235, 235};
+    char text[JD_MODE_COUNT + 1][96];
+    const int panels = JD_MODE_COUNT + first;
+    int scale = 2;
+    for (int p = 0; p < panels; p++) {
+        snprintf(text[p], sizeof text[p], "%s - %s", p < first ? "REFERENCE (DIPOLE)" : modes[p - first], material);
+        if ((int)strlen(text[p]) * 12 + 16 > w) scale = 1;
+    }
+    /* 6 pixels a character at the font's size, 8 of margin on each side. */
+    int fit = (w - 16) / (6 * scale);
+    for (int p = 0; p < panels; p++) {
+        if (fit < 1) break;
+        char *dash = strstr(text[p], " - ");
+        if ((int)strlen(text[p]) > fit && dash) *dash = '\0';
+        if ((int)strlen(text[p]) > fit) text[p][fit] = '\0';
+        jd_font_draw(sheet, sw, sh, p * w + 8, scale == 2 ? 7 : 10, scale, text[p], white);
+    }
+}
+
 int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
 {
     const int band = 28, w = o->width, h = o->height;
@@ -34,15 +60,9 @@ int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
         sheet[4 * i] = sheet[4 * i + 1] = sheet[4 * i + 2] = 24;
         sheet[4 * i + 3] = 255;
     }
-    static const char *labels[JD_MODE_COUNT] = {"NONE (DIRECT ONLY)", "SINGLE (SCCG 2006)", "DUAL FUNNEL", "FULL (DIFFUSED)"};
-    const uint8_t white[3] = {235, 235, 235};
     if (ref) {
         for (int y = 0; y < h; y++) memcpy(sheet + 4 * ((size_t)(y + band) * sw), ref + 4 * (size_t)y * w, 4 * (size_t)w);
         free(ref);
-        char text[96];
-        snprintf(text, sizeof text, "REFERENCE (DIPOLE) - %s", o->material);
-        int scale = (int)strlen(text) * 12 + 16 <= w ? 2 : 1;
-        jd_font_draw(sheet, sw, sh, 8, scale == 2 ? 7 : 10, scale, text, white);
     }
     for (int m = 0; m < JD_MODE_COUNT; m++) {
         jd_scene sc = o->scene;
@@ -53,11 +73,8 @@ int jd_render_sheet(jd_session *s, jd_options *o, uint8_t *px)
         }
         for (int y = 0; y < h; y++)
             memcpy(sheet + 4 * ((size_t)(y + band) * sw + (size_t)(m + first) * w), px + 4 * (size_t)y * w, 4 * (size_t)w);
-        char text[96];
-        snprintf(text, sizeof text, "%s - %s", labels[m], o->material);
-        int scale = (int)strlen(text) * 12 + 16 <= w ? 2 : 1;
-        jd_font_draw(sheet, sw, sh, (m + first) * w + 8, scale == 2 ? 7 : 10, scale, text, white);
     }
+    draw_labels(sheet, sw, sh, w, first, o->material);
     if (jd_png_write(o->sheet, sw, sh, sheet, &err)) {
         fprintf(stderr, "jade render: %s\n", err.msg);
         return 1;
