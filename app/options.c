@@ -121,7 +121,7 @@ static const opt table[] = {
      "S          a health line every S seconds: frames, frame times, missed vblanks, memory, fds, GL names [0: off]"},
     {"--cycle-materials", T_FLAG, OFF(cycle_materials), 0, 0, B, "           bench: a different material every 10 frames (soak tests)"},
     {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, S | JD_OPT_CONVERT, "N          memory budget, fixed [8 + the output pictures, doubled until the mesh fits]"},
-    {"--decode-timeout-ms", T_INT, OFF(load.timeout_ms), 1, 600000, S | JD_OPT_CONVERT, "N          refuse a mesh whose decode takes longer [1500]"},
+    {"--decode-timeout-ms", T_INT, OFF(load.timeout_ms), 1, 600000, S | JD_OPT_CONVERT, "N          refuse a mesh whose decode takes longer [1500 + 1000 a MiB + 5 a thousand triangles]"},
     {"--max-faces", T_INT, OFF(load.max_faces), 1, 100000000, S | JD_OPT_CONVERT, "N          refuse meshes with more faces [4000000]"},
 };
 #undef R

@@ -38,6 +38,15 @@ int jd_default_asset(char *out, size_t cap)
     return access(out, R_OK) == 0;
 }
 
+/* A load's failure in one line; a decode stopped at its deadline says
+ * how to give it more (a board's slower cores take longer over a large
+ * mesh than the default allows for). */
+static void say_load_failure(const char *cmd, jd_result r, const jd_error *err)
+{
+    fprintf(stderr, "jade %s: %s%s\n", cmd, err->msg,
+            r == JD_ERR_TIMEOUT ? " (--decode-timeout-ms N gives it N ms)" : "");
+}
+
 /* The mesh path, the memory budget and the decoded mesh: all a command
  * needs before any display. */
 static int load_mesh(jd_session *s, jd_options *o, const char *cmd)
@@ -68,7 +77,7 @@ static int load_mesh(jd_session *s, jd_options *o, const char *cmd)
         free(s->memory);
         s->memory = NULL;
         if (r != JD_ERR_BUDGET || o->has_budget || budget >= ((size_t)1 << 31) / 2) {
-            fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+            say_load_failure(cmd, r, &err);
             return 0;
         }
         budget *= 2;
@@ -197,11 +206,12 @@ int jd_session_reload_mesh(jd_session *s, jd_options *o, const char *cmd)
         jd_load_desc ld = o->load;
         ld.path = s->mesh_path;
         ld.allow_32bit_indices = 1;
-        if (jd_mesh_load_draco(&ld, &s->arena, &s->mesh, &s->load, &err) == JD_OK) {
+        jd_result r = jd_mesh_load_draco(&ld, &s->arena, &s->mesh, &s->load, &err);
+        if (r == JD_OK) {
             jd_options_file_material(o, &s->load, s->mesh_path, cmd);
             if (make_renderer(s, o, cmd)) return attempt == 0;
         } else {
-            fprintf(stderr, "jade %s: %s\n", cmd, err.msg);
+            say_load_failure(cmd, r, &err);
         }
         if (attempt == 0) fprintf(stderr, "jade %s: going on with %s\n", cmd, old);
         memcpy(s->mesh_path, old, sizeof old);

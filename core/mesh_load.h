@@ -20,7 +20,7 @@ typedef struct jd_load_desc {
     size_t max_file_bytes;      /* [64 MiB] */
     uint32_t max_vertices;      /* [4,000,000] */
     uint32_t max_faces;         /* [4,000,000] */
-    int timeout_ms;             /* [1500] wall time for the whole decode */
+    int timeout_ms;             /* [jd_load_default_timeout_ms] wall time for the whole decode */
     size_t decode_memory_bytes; /* [192 MiB] address space the decoder may add */
     int allow_32bit_indices;    /* the GL device has OES_element_index_uint */
     int keep_face_order;        /* [0: triangles longer than a twelfth of the mesh split, and reordered for the
@@ -73,6 +73,12 @@ typedef struct jd_load_stats {
  * it. Call before creating threads (a GL context): the child forks. */
 jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out,
                              jd_load_stats *stats, jd_error *err);
+
+/* The deadline a decode gets where jd_load_desc.timeout_ms is 0, in ms:
+ * 1500, and 1000 more per MiB of the file and 5 per thousand triangles its
+ * header declares (time that grows with the work, as on a board's slower
+ * cores it must), at most 600,000. */
+int jd_load_default_timeout_ms(size_t file_bytes, uint32_t declared_faces);
 
 #ifdef __cplusplus
 }

@@ -72,6 +72,9 @@ expect "cube size 32" 0 "wrote" -- "$jade" render --cube-size 32 --mode dual --s
 expect "cube size 32, vc4" 0 "wrote" -- "$jade" render --cube-size 32 --mode dual --size 32x32 --profile vc4 --out "$tmp/c32.png"
 expect "bad cube size" 2 "multiple of 8" -- "$jade" render --cube-size 60
 expect "missing mesh" 1 "cannot open" -- "$jade" render --mesh "$tmp/nope.drc" --out "$tmp/x.png"
+# A decode stopped at its deadline says which option gives it more time.
+expect "decode past its deadline" 1 "decoding took longer than 1 ms; refused (--decode-timeout-ms N gives it N ms)" -- \
+    "$jade" render --mesh "$mesh0" --decode-timeout-ms 1 --out "$tmp/x.png"
 printf 'hello' > "$tmp/hello.drc"
 if command -v draco_encoder >/dev/null; then
     # A tetrahedron whose first texture coordinate is NaN (unquantised, so it survives encoding).

@@ -178,6 +178,16 @@ int main(int argc, char **argv)
         jd_result r = load(name, 1, &err, &m);
         CHECK(r == JD_ERR_TIMEOUT && strstr(err.msg, "longer than 1 ms"), "deadline enforced: %s", err.msg);
         printf("  %-28s -> %s\n", "slow decode (1 ms limit)", err.msg);
+        /* Without a deadline of the caller's the decode's grows with the
+         * file and its triangles (a flat 1.5 s refused a 35 MB scan), and
+         * stays finite. */
+        CHECK(jd_load_default_timeout_ms(0, 0) == 1500, "default deadline of an empty file: %d ms",
+              jd_load_default_timeout_ms(0, 0));
+        CHECK(jd_load_default_timeout_ms((size_t)35 << 20, 980000) == 1500 + 35000 + 4900,
+              "default deadline of 35 MiB and 980,000 triangles: %d ms",
+              jd_load_default_timeout_ms((size_t)35 << 20, 980000));
+        CHECK(jd_load_default_timeout_ms((size_t)1 << 40, 4000000000u) == 600000, "default deadline capped: %d ms",
+              jd_load_default_timeout_ms((size_t)1 << 40, 4000000000u));
 #if defined(__SANITIZE_ADDRESS__)
         (void)emulated; /* no address-space cap under ASan */
 #else

@@ -60,6 +60,7 @@ int main()
         FN(jd_mesh_fix_normals),
         FN(jd_unit_normal),
         FN(jd_mesh_index),
+        FN(jd_load_default_timeout_ms),
         FN(jd_mesh_load_draco),
         FN(jd_mesh_normals_follow_winding),
         FN(jd_mesh_orient_outward),
@@ -134,6 +135,7 @@ int main()
     jd_mode m;
     ok = ok && jd_mode_parse("dual", &m) == 1 && std::strcmp(jd_mode_name(m), "dual") == 0 && jd_pass_name(0) != nullptr;
     ok = ok && jd_material_find("skin1") != nullptr && jd_profile_find("mali400") != nullptr;
+    ok = ok && jd_load_default_timeout_ms(0, 0) == 1500;
     {
         static jd_frame_count fc;
         static jd_estimate est;
