@@ -185,7 +185,10 @@ int jd_cmd_bench(int argc, char **argv)
 
     printf("{\n  \"mesh\": ");
     jd_json_string(stdout, s.mesh_path);
-    printf(", \"triangles\": %u, \"vertices\": %u, \"proxy_triangles\": %u,\n", s.mesh.num_indices / 3,
+    /* file_triangles: the file's own, where loading split (coarse) or
+     * simplified (--simplify) them. */
+    printf(", \"triangles\": %u, \"file_triangles\": %u, \"vertices\": %u, \"proxy_triangles\": %u,\n",
+           s.mesh.num_indices / 3, s.load.declared_faces ? s.load.declared_faces : s.mesh.num_indices / 3,
            s.mesh.num_vertices, info.proxy->num_indices / 3);
     printf("  \"size\": \"%dx%d\", \"frames\": %d, \"material\": ", o.width, o.height, o.frames);
     jd_json_string(stdout, o.material);

@@ -123,6 +123,8 @@ static const opt table[] = {
     {"--budget-mb", T_INT, OFF(budget_mb), 1, 4096, S | JD_OPT_CONVERT, "N          memory budget, fixed [8 + the output pictures, doubled until the mesh fits]"},
     {"--decode-timeout-ms", T_INT, OFF(load.timeout_ms), 1, 600000, S | JD_OPT_CONVERT, "N          refuse a mesh whose decode takes longer [1500 + 1000 a MiB + 5 a thousand triangles]"},
     {"--max-faces", T_INT, OFF(load.max_faces), 1, 100000000, S | JD_OPT_CONVERT, "N          refuse meshes with more faces [4000000]"},
+    {"--simplify", T_INT, OFF(load.simplify_to), 64, 100000000, S | JD_OPT_CONVERT,
+     "N          a mesh of more triangles is simplified towards N as it loads (meshoptimizer; a scan's million bind a Mali-400's vertex processor) [0: as the file has them]"},
 };
 #undef R
 #undef S

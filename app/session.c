@@ -256,7 +256,8 @@ void jd_session_close(jd_session *s)
 const char *jd_session_triangles(const jd_session *s, char *buf, size_t cap)
 {
     uint32_t n = s->mesh.num_indices / 3, read = s->load.declared_faces;
-    if (read && read != n) snprintf(buf, cap, "%u triangles, split to %u where coarse", read, n);
+    if (read && read < n) snprintf(buf, cap, "%u triangles, split to %u where coarse", read, n);
+    else if (read && read > n) snprintf(buf, cap, "%u triangles, simplified to %u", read, n);
     else snprintf(buf, cap, "%u triangles", n);
     return buf;
 }

@@ -1,6 +1,7 @@
 #include "mesh_arrays.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -76,6 +77,74 @@ void jd_mesh_arrays_order(jd_mesh_arrays *m)
     free(tmp);
 #else
     (void)m;
+#endif
+}
+
+#ifdef JD_HAVE_MESHOPT
+/* One vertex stream (NULL: none) into a new array of the vertices remap
+ * keeps; 0, or -1 without memory (the stream as it was). */
+static int remap_stream(void **stream, size_t nv_old, size_t nv_new, size_t size, const uint32_t *remap)
+{
+    if (!*stream) return 0;
+    void *out = malloc(size * (nv_new ? nv_new : 1));
+    if (!out) return -1;
+    meshopt_remapVertexBuffer(out, *stream, nv_old, size, remap);
+    free(*stream);
+    *stream = out;
+    return 0;
+}
+#endif
+
+int jd_mesh_arrays_simplify(jd_mesh_arrays *m, uint32_t target, char *msg, size_t cap)
+{
+    if (!target || m->nf <= target) return 0;
+#ifdef JD_HAVE_MESHOPT
+    size_t n = 3 * (size_t)m->nf;
+    for (size_t i = 0; i < n; i++)
+        if (m->idx[i] >= m->nv) return 0; /* the parent refuses it */
+    for (size_t i = 0; i < 3 * (size_t)m->nv; i++)
+        if (!isfinite(m->pos[i])) return 0;
+    uint32_t *dst = malloc(sizeof(uint32_t) * n), *remap = malloc(sizeof(uint32_t) * (size_t)m->nv);
+    /* meshoptimizer's own scratch (its simplifier keeps about 90 bytes a
+     * vertex and 30 an index) is not checked by it: tried first. */
+    void *probe = dst && remap ? malloc(96 * (size_t)m->nv + 32 * n + 4096) : NULL;
+    if (!probe) {
+        free(dst);
+        free(remap);
+        snprintf(msg, cap, "out of memory simplifying its %u triangles", m->nf);
+        return -1;
+    }
+    free(probe);
+    /* Edge collapses that keep the surface's topology and its attribute
+     * seams (meshoptimizer tells a seam by equal positions), moving it by
+     * at most 2% of the mesh's extent: where that stops short of the target
+     * the mesh keeps more triangles, not a torn surface. */
+    size_t kept = meshopt_simplify(dst, m->idx, n, m->pos, m->nv, 3 * sizeof(float), 3 * (size_t)target, 0.02f, 0, NULL);
+    if (kept == 0) {
+        free(dst);
+        free(remap);
+        return 0; /* nothing left that the error allows: the mesh as it was */
+    }
+    /* The vertices still used, in first-use order; every stream remapped. */
+    size_t nv = meshopt_optimizeVertexFetchRemap(remap, dst, kept, m->nv);
+    meshopt_remapIndexBuffer(dst, dst, kept, remap);
+    if (remap_stream((void **)&m->pos, m->nv, nv, 3 * sizeof(float), remap) ||
+        remap_stream((void **)&m->nrm, m->nv, nv, 3 * sizeof(float), remap) ||
+        remap_stream((void **)&m->uv, m->nv, nv, 2 * sizeof(float), remap) || remap_stream((void **)&m->col, m->nv, nv, 4, remap)) {
+        free(dst);
+        free(remap);
+        snprintf(msg, cap, "out of memory simplifying its %u triangles", m->nf);
+        return -1;
+    }
+    free(remap);
+    free(m->idx);
+    m->idx = dst;
+    m->nf = (uint32_t)(kept / 3);
+    m->nv = (uint32_t)nv;
+    return 0;
+#else
+    snprintf(msg, cap, "this jade was built without meshoptimizer, so it cannot simplify the mesh to %u triangles", target);
+    return -1;
 #endif
 }
 

@@ -38,6 +38,11 @@ void jd_mesh_arrays_drop_uvs(jd_mesh_arrays *m);
  * indices out of range (the parent refuses those), left as they are. */
 void jd_mesh_arrays_order(jd_mesh_arrays *m);
 
+/* A mesh of more than `target` triangles (0: none) simplified towards that
+ * many where built with meshoptimizer (its vertices those still used, in
+ * first-use order); 0, or -1 with msg set (no meshoptimizer, no memory). */
+int jd_mesh_arrays_simplify(jd_mesh_arrays *m, uint32_t target, char *msg, size_t cap);
+
 /* Streams the record: header, positions, [normals], [uvs], indices,
  * [material], [medium], [colours], [texture: w, h, texels]. 0, or -1 when the pipe closed. */
 int jd_mesh_arrays_emit(const jd_mesh_arrays *m, jd_record_write_fn write, void *user);

@@ -109,7 +109,8 @@ static void child_main(const jd_load_desc *d, const uint8_t *buf, size_t n, int 
         /* Split where coarse, then ordered; as the file has them where the
          * caller keeps the triangles' order (jade convert). */
         m.nf_read = m.nf;
-        if (!d->keep_face_order && jd_mesh_arrays_subdivide(&m, d->max_vertices, d->max_faces) != 0) {
+        if (jd_mesh_arrays_simplify(&m, d->simplify_to, msg, sizeof msg) != 0) rc = -1;
+        if (rc == 0 && !d->keep_face_order && jd_mesh_arrays_subdivide(&m, d->max_vertices, d->max_faces) != 0) {
             snprintf(msg, sizeof msg, "out of memory splitting its large triangles");
             rc = -1;
         }
@@ -273,7 +274,8 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
     if (!d.max_file_bytes) d.max_file_bytes = 64u << 20;
     if (!d.max_vertices) d.max_vertices = 4000000;
     if (!d.max_faces) d.max_faces = 4000000;
-    if (!d.decode_memory_bytes) d.decode_memory_bytes = (size_t)192 << 20;
+    int default_memory = !d.decode_memory_bytes;
+    if (default_memory) d.decode_memory_bytes = (size_t)192 << 20;
     if (d.max_texture_size <= 0) d.max_texture_size = JD_TEXTURE_MEDIUMP_SIDE;
     for (int p = 1; p <= d.max_texture_size; p <<= 1)
         if (p * 2 > d.max_texture_size) { d.max_texture_size = p; break; } /* a power of two */
@@ -302,6 +304,14 @@ jd_result jd_mesh_load_draco(const jd_load_desc *desc, jd_arena *a, jd_mesh *out
     }
     d.format = format;
     if (d.timeout_ms <= 0) d.timeout_ms = jd_load_default_timeout_ms(n, declared_faces);
+    /* Simplifying takes meshoptimizer's scratch beside the mesh (about 130
+     * bytes a triangle: its quadrics, edges and collapses): the default's
+     * room grows by that where the file may hold more than asked for (an
+     * OBJ declares no count: a triangle takes at least 24 of its bytes, a
+     * vertex line and a face line). */
+    size_t faces_at_most = declared_faces > n / 24 ? declared_faces : n / 24;
+    if (default_memory && d.simplify_to && faces_at_most > d.simplify_to)
+        d.decode_memory_bytes += (size_t)160 * faces_at_most;
 
     int data_pipe[2], err_pipe[2];
     if (pipe2(data_pipe, O_CLOEXEC) != 0) { r = jd_fail(err, JD_ERR_IO, "pipe: %s", strerror(errno)); goto fail; }

@@ -21,7 +21,8 @@ typedef struct jd_load_desc {
     uint32_t max_vertices;      /* [4,000,000] */
     uint32_t max_faces;         /* [4,000,000] */
     int timeout_ms;             /* [jd_load_default_timeout_ms] wall time for the whole decode */
-    size_t decode_memory_bytes; /* [192 MiB] address space the decoder may add */
+    size_t decode_memory_bytes; /* [192 MiB, and 160 bytes a triangle more where simplify_to asks for
+                                   fewer than the file may hold] address space the decoder may add */
     int allow_32bit_indices;    /* the GL device has OES_element_index_uint */
     int keep_face_order;        /* [0: triangles longer than a twelfth of the mesh split, and reordered for the
                                    GPU's vertex cache and overdraw] 1: the file's triangles as they are */
@@ -30,6 +31,10 @@ typedef struct jd_load_desc {
     int max_texture_size;       /* [1024, JD_TEXTURE_MEDIUMP_SIDE] a colour texture's largest side once
                                    resampled (a power of two) */
     int format;                 /* set by the loader: the jd_mesh_format found in the file */
+    uint32_t simplify_to;       /* [0: the file's triangles] a mesh of more is simplified towards this many
+                                   (meshoptimizer's edge collapses, at most 2% of its extent; a build
+                                   without meshoptimizer refuses it): a scan of a million triangles is
+                                   bound by a Mali-400's vertex processor, 78 ms a frame */
 } jd_load_desc;
 
 /* The largest colour texture the renderer draws: its texture coordinates
