@@ -44,6 +44,19 @@ static int print_estimate(jd_session *s, const jd_board *b, const jd_scene *sc, 
                p->bytes_read, e->ms * khz, e->ms);
     }
     printf("]}");
+    /* A mesh whose vertices bind the board's frame past 60 Hz (a scan on a
+     * Mali-400's one vertex processor): the option that helps, and about
+     * how far, the vertex side taken as proportional to the triangles. */
+    static int said;
+    double fit = 0.9 * 1000.0 / 60.0, want = est.fragment_ms > fit ? est.fragment_ms : 0.85 * 1000.0 / 60.0;
+    uint32_t tris = s->mesh.num_indices / 3;
+    if (!said && est.vertex_ms > fit && est.vertex_ms > est.fragment_ms && tris > 2000) {
+        said = 1;
+        uint32_t n = (uint32_t)((double)tris * want / est.vertex_ms) / 1000 * 1000;
+        fprintf(stderr, "jade bench: on %s the %u triangles' vertices bind the frame (%.1f ms, the pixels %.1f): "
+                "--simplify %u would bring them to about %.1f ms\n", b->name, tris, est.vertex_ms, est.fragment_ms,
+                n ? n : 1000, want);
+    }
     return 1;
 }
 

@@ -86,6 +86,18 @@ elif [ -f "$tmp/tex_vc4.png" ] && "$imgcmp" "$tmp/tex_vc4.png" "$tmp/tex_device.
 else
     fail=$((fail + 1)); echo "FAIL the textured chunked picture differs: $(tail -1 "$tmp/cmp" 2>/dev/null)"
 fi
+# The frame-cost model says when the vertices bind a board's frame, and
+# what to ask for: the sphere's 250,500 vertices on a Mali-400 MP2.
+if "$jade" bench --mesh "$tmp/sphere.obj" --mode full --device mali400-mp2 --size 1920x1080 --frames 1 \
+        --decode-timeout-ms 60000 >"$tmp/bench.json" 2>"$tmp/bench.err" &&
+    n=$(sed -n 's/.*vertices bind the frame.*--simplify \([0-9]*\) would.*/\1/p' "$tmp/bench.err") && [ -n "$n" ] &&
+    "$jade" bench --mesh "$tmp/sphere.obj" --simplify "$n" --mode full --device mali400-mp2 --size 1920x1080 --frames 1 \
+        --decode-timeout-ms 60000 >"$tmp/bench2.json" 2>"$tmp/bench2.err" && ! grep -q "vertices bind" "$tmp/bench2.err"; then
+    pass=$((pass + 1))
+    echo "ok   bench --device mali400-mp2: $(grep "vertices bind" "$tmp/bench.err" | sed 's/^jade bench: //'); with it the frame $(grep -o '"frame_ms": [0-9.]*' "$tmp/bench2.json" | head -1)"
+else
+    fail=$((fail + 1)); echo "FAIL bench's --simplify hint: $(cat "$tmp/bench.err" "$tmp/bench2.err" 2>/dev/null)"
+fi
 # Simplified with its texture: the coordinates and colours follow the
 # vertices kept.
 [ -f "$tmp/tex_device.png" ] && simplified simplified_textured "$tmp/textured.obj" "$tmp/tex_device.png" \
