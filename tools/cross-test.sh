@@ -56,14 +56,16 @@ fi
 # (Made again when an older run's sysroot lacks a package added since.)
 if [ ! -f "$sysroot/usr/lib/aarch64-linux-gnu/pkgconfig/draco.pc" ] ||
    [ ! -f "$sysroot/usr/lib/aarch64-linux-gnu/pkgconfig/libcjson.pc" ] ||
-   [ ! -f "$sysroot/usr/lib/aarch64-linux-gnu/pkgconfig/libjpeg.pc" ]; then
+   [ ! -f "$sysroot/usr/lib/aarch64-linux-gnu/pkgconfig/libjpeg.pc" ] ||
+   [ ! -d "$sysroot/usr/lib/aarch64-linux-gnu/cmake/meshoptimizer" ]; then
     mkdir -p "$sysroot.debs"
     # shellcheck disable=SC2046
     if ! err=$(cd "$sysroot.debs" && apt-get download $(for p in libc6 libc6-dev linux-libc-dev libgcc-s1 libgcc-12-dev \
         libstdc++6 libstdc++-12-dev libdraco7 libdraco-dev libegl1 libegl-dev libglvnd0 libgles2 libgles1 \
         libgles-dev libgl-dev libgl1 libglx0 libglx-dev libopengl0 libx11-dev libx11-6 libxcb1 libxau6 \
         libxdmcp6 libbsd0 libmd0 libstb0 libstb-dev libcjson1 libcjson-dev libpng16-16 libpng-dev \
-        libjpeg62-turbo libjpeg62-turbo-dev zlib1g zlib1g-dev; do echo "$p:arm64"; done) x11proto-dev 2>&1 >/dev/null); then
+        libjpeg62-turbo libjpeg62-turbo-dev zlib1g zlib1g-dev libmeshoptimizer2d libmeshoptimizer-dev; do
+            echo "$p:arm64"; done) x11proto-dev 2>&1 >/dev/null); then
         echo "skipped: arm64 sysroot build (packages could not be downloaded: $(echo "$err" | grep '^E:' | tail -1))"
         rm -rf "$sysroot.debs"
         exit 0
@@ -75,6 +77,8 @@ cmake -S . -B build-aarch64-sysroot -DCMAKE_TOOLCHAIN_FILE=toolchains/aarch64-li
     -DCMAKE_BUILD_TYPE=Release >/dev/null
 grep -q "DRACO_LIBRARY_DIRS:INTERNAL=$sysroot" build-aarch64-sysroot/CMakeCache.txt ||
     { echo "pkg-config did not resolve Draco inside the sysroot"; exit 1; }
+grep -q "meshoptimizer_DIR:PATH=$sysroot" build-aarch64-sysroot/CMakeCache.txt ||
+    { echo "meshoptimizer (triangle order, --simplify) was not found inside the sysroot"; exit 1; }
 cmake --build build-aarch64-sysroot -j"$jobs" >/dev/null
 (cd build-aarch64-sysroot && ctest --output-on-failure -R '^(units|bad_inputs)$')
 # The examples against that build installed into the sysroot, as a board's

@@ -22,7 +22,7 @@ archs=${JADE_CROSS_ARCHS:-"arm64 armhf"}
 status=${JADE_CROSS_STATUS:-build-cross/status}
 mkdir -p "$(dirname "$status")"
 : > "$status"
-pkgs_of() { echo "crossbuild-essential-$1 libdraco-dev:$1 libpng-dev:$1 libjpeg62-turbo-dev:$1 libstb-dev:$1 libegl-dev:$1 libgles-dev:$1 libgbm-dev:$1 libdrm-dev:$1 libx11-dev:$1 libcjson-dev:$1 libinput-dev:$1"; }
+pkgs_of() { echo "crossbuild-essential-$1 libdraco-dev:$1 libpng-dev:$1 libjpeg62-turbo-dev:$1 libstb-dev:$1 libegl-dev:$1 libgles-dev:$1 libgbm-dev:$1 libdrm-dev:$1 libx11-dev:$1 libcjson-dev:$1 libinput-dev:$1 libmeshoptimizer-dev:$1"; }
 skip() { echo "skipped $1 $2" >> "$status"; echo "skipped: $1 ($2)"; }
 
 # Which architectures need anything.
