@@ -38,6 +38,8 @@ static unsigned char *read_all(const char *path, size_t *n)
     return b;
 }
 
+static int emulated_run; /* under qemu-user: set from argv in main */
+
 /* Loads one file; returns the result and the message. */
 static jd_result load_limited(const char *path, int timeout_ms, size_t memory, jd_error *err, jd_mesh *m)
 {
@@ -48,7 +50,11 @@ static jd_result load_limited(const char *path, int timeout_ms, size_t memory, j
     jd_result r = jd_mesh_load_draco(&ld, &a, m, NULL, err);
     double ms = jd_clock_ms() - t0;
     if (ms > worst_ms) { worst_ms = ms; snprintf(worst_name, sizeof worst_name, "%s", path); }
-    CHECK(ms < 2000, "%s took %.0f ms", path, ms);
+    /* Bounded: the deadline and what the parent does after it. Under
+     * qemu-user (a cross build's tests) that after is several times slower,
+     * and with meshoptimizer in the board builds the child orders the
+     * triangles too: a decode that finished inside 1500 ms took 2112 in all. */
+    CHECK(ms < (timeout_ms > 1500 ? timeout_ms : 1500) + (emulated_run ? 4000.0 : 500.0), "%s took %.0f ms", path, ms);
     return r;
 }
 
@@ -77,6 +83,7 @@ int main(int argc, char **argv)
     /* Under qemu-user the guest's RLIMIT_AS is ignored (it would bind the
      * emulator): the memory cap can only be checked natively. */
     int emulated = argc > 2 && strcmp(argv[2], "emulated") == 0;
+    emulated_run = emulated;
     snprintf(dir, sizeof dir, "/tmp/jade-bad-XXXXXX");
     if (!mkdtemp(dir)) return 1;
 
