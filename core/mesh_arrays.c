@@ -29,6 +29,18 @@ void jd_mesh_arrays_drop_uvs(jd_mesh_arrays *m)
 }
 
 #ifdef JD_HAVE_MESHOPT
+/* What meshoptimizer may be given: indices in range and finite positions
+ * (a mesh with either is refused later by the parent, and must not reach
+ * the overdraw sort or the simplifier's quadrics first). */
+static int meshopt_safe(const jd_mesh_arrays *m)
+{
+    for (size_t i = 0; i < 3 * (size_t)m->nf; i++)
+        if (m->idx[i] >= m->nv) return 0;
+    for (size_t i = 0; i < 3 * (size_t)m->nv; i++)
+        if (!isfinite(m->pos[i])) return 0;
+    return 1;
+}
+
 static void turn_round(uint32_t *idx, size_t n)
 {
     for (size_t t = 0; t + 2 < n; t += 3) {
@@ -43,12 +55,7 @@ void jd_mesh_arrays_order(jd_mesh_arrays *m)
 {
 #ifdef JD_HAVE_MESHOPT
     size_t n = 3 * (size_t)m->nf;
-    for (size_t i = 0; i < n; i++)
-        if (m->idx[i] >= m->nv) return;
-    /* Non-finite positions (refused later by the parent) must not reach the
-     * overdraw sort. */
-    for (size_t i = 0; i < 3 * (size_t)m->nv; i++)
-        if (!isfinite(m->pos[i])) return;
+    if (!meshopt_safe(m)) return;
     /* The overdraw order sorts by which way triangles face: a mesh wound
      * inside out (the parent turns it round later) is ordered turned round. */
     double vol6 = 0;
@@ -100,10 +107,7 @@ int jd_mesh_arrays_simplify(jd_mesh_arrays *m, uint32_t target, char *msg, size_
     if (!target || m->nf <= target) return 0;
 #ifdef JD_HAVE_MESHOPT
     size_t n = 3 * (size_t)m->nf;
-    for (size_t i = 0; i < n; i++)
-        if (m->idx[i] >= m->nv) return 0; /* the parent refuses it */
-    for (size_t i = 0; i < 3 * (size_t)m->nv; i++)
-        if (!isfinite(m->pos[i])) return 0;
+    if (!meshopt_safe(m)) return 0; /* the parent refuses it */
     uint32_t *dst = malloc(sizeof(uint32_t) * n), *remap = malloc(sizeof(uint32_t) * (size_t)m->nv);
     /* meshoptimizer's own scratch (its simplifier keeps about 90 bytes a
      * vertex and 30 an index) is not checked by it: tried first. */
