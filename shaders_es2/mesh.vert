@@ -53,8 +53,22 @@ varying vec3 v_uv;             // texture coordinates, the entry's mip bias
 // between its vertices' (a 12-triangle cube close up: 2 of 255 at most).
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 uniform vec2 u_fresnel;      // jd_fresnel_tc's fit at the scene's eta
+#if JD_WIDE_BUFFER
+// Where the levels' sum comes from its buffer (Utgard; Vivante GC400 to
+// GC2000), the local part's light is made here too, times its colour and
+// weight (u_local_x), and the highlight's side test rides in the half
+// vector's w: lima's shading one word shorter (27 -> 26; with a texture
+// 32 -> 31), its vertex stage 2 longer; Vivante GC2000 35 -> 33 (Midgard,
+// on the same path, 29 -> 31 cycles). Where the levels are summed per
+// vertex (VideoCore IV, Adreno 3xx) that form made the shading longer
+// (118 -> 122 and 119 -> 126 instructions).
+uniform vec3 u_local_x;
+varying vec4 v_fresnel;      // u_local_x n.l Ft(l)/c keep, Ft(v)/c
+varying vec4 v_half;         // w: n.l Ft(l)/c keep, > 0 where the vertex is lit
+#else
 varying vec2 v_fresnel;
 varying vec3 v_half;
+#endif
 #endif
 #if JD_FULL
 uniform vec3 u_keep[2];     // a lit face's light kept by a part t thick: 1 - a 2^(-b t) (pass_light.c)
@@ -169,8 +183,21 @@ void main()
     if (dot(nf, vf) < 0.0) nf = -nf;
     float ndl_v = max(dot(nf, u_light_dir), 0.0);
     // n.l is 0 on a face turned from the light: keep counts only where lit.
-    v_fresnel = vec2(ndl_v * jd_fresnel_tc(ndl_v, u_fresnel) * keep.g, jd_fresnel_tc(dot(nf, vf), u_fresnel));
-    v_half = normalize(u_light_dir + vf);
+    float fl = ndl_v * jd_fresnel_tc(ndl_v, u_fresnel) * keep.g, fv = jd_fresnel_tc(dot(nf, vf), u_fresnel);
+    vec3 hv = normalize(u_light_dir + vf);
+#if JD_WIDE_BUFFER
+    v_fresnel = vec4(u_local_x * fl, fv);
+    v_half = vec4(hv, fl);
+#else
+    v_fresnel = vec2(fl, fv);
+    v_half = hv;
+#endif
+#if JD_ALBEDO
+    // The view's Fresnel factor rides on the colour, which multiplies the
+    // same light in the fragment stage (shade.frag): a vector multiply
+    // fewer a fragment there (lima 33 -> 32 words, Adreno 3xx 136 -> 126).
+    v_col.rgb *= fv;
+#endif
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
     vec3 nv = an;

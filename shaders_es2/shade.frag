@@ -44,7 +44,6 @@ uniform vec3 u_w0;
 // (pass_screen.c): lima's compiler multiplied the uniforms in every
 // fragment (4 instruction words).
 uniform vec3 u_amb_x;        // Rd_total x ambient x exposure
-uniform vec3 u_local_x;      // light colour x Rd's weight on the Gaussians finer than a level texel x exposure
 uniform vec3 u_wide_x;       // light colour x exposure (x 2 where the levels' sum is read halved)
 uniform vec3 u_spec_x;       // light colour x specular x exposure
 #ifdef JD_SPEC_TABLE
@@ -52,8 +51,20 @@ uniform vec3 u_spec_x;       // light colour x specular x exposure
 // normal (pass_screen.c, jdr_update_spec).
 uniform sampler2D u_spec;
 #endif
-varying vec2 v_fresnel;      // n.l Ft(l)/c times a thin part's keep, and Ft(v)/c, per vertex (mesh.vert)
-varying vec3 v_half;         // the highlight's half vector, unit length at the vertices (mesh.vert)
+// Per vertex (mesh.vert): n.l Ft(l)/c times a thin part's keep (fl), the
+// view's Ft(v)/c, the highlight's half vector, unit length at the vertices.
+#if JD_WIDE_BUFFER
+varying vec4 v_fresnel;      // the local part's light, u_local_x fl; Ft(v)/c
+varying vec4 v_half;         // w: fl, the highlight's side test
+#define JD_LIT_V v_half.w
+#define JD_FT_V v_fresnel.w
+#else
+uniform vec3 u_local_x;      // light colour x Rd's weight on the Gaussians finer than a level texel x exposure
+varying vec2 v_fresnel;      // fl, Ft(v)/c
+varying vec3 v_half;
+#define JD_LIT_V v_fresnel.x
+#define JD_FT_V v_fresnel.y
+#endif
 #endif
 #if JD_VERTEX_DIFFUSION
 varying vec3 v_wide;         // the levels' light, per vertex (jd_diffused)
@@ -197,7 +208,7 @@ void main()
     // VideoCore IV 20 instructions; the default asset, the bunny, the
     // pebble and a 12-triangle cube at 512x512 no pixel more than 8 of 255
     // from the per-fragment one.
-    vec3 h = v_half;
+    vec3 h = v_half.xyz;
 #else
     vec3 h = normalize(u_light_dir + v);
 #endif
@@ -209,7 +220,7 @@ void main()
     // table's first row, 0. The normal turns to the eye only where back
     // faces are drawn: culled, a visible face's normal faces the eye but
     // in the silhouette's last pixels (the normals follow the winding,
-    // mesh_load.c). The side test is the vertices' n.l (v_fresnel.x: > 0
+    // mesh_load.c). The side test is the vertices' n.l (JD_LIT_V: > 0
     // where any vertex of the triangle is lit), a word fewer than the
     // fragment's own.
     vec3 ns = v_normal;
@@ -219,7 +230,7 @@ void main()
     // Read outside the test: inside it, lima branched round the read.
     float st = texture2D(u_spec, vec2(dot(v_normal, v_normal) * JD_SPEC_SCALE.x + JD_SPEC_OFFSET.x,
                                       dot(ns, h) * JD_SPEC_SCALE.y + JD_SPEC_OFFSET.y)).r;
-    float spec = v_fresnel.x > 0.0 ? vis * st : 0.0;
+    float spec = JD_LIT_V > 0.0 ? vis * st : 0.0;
 #else
     float spec = ndl > 0.0 ? vis * pow(max(dot(n, h), 0.0), u_shading.z) : 0.0;
 #endif
@@ -256,11 +267,17 @@ void main()
     gl_FragColor = vec4(sqrt(clamp(0.5 * wide, 0.0, 1.0)), 1.0);
     return;
 #else
+#if JD_WIDE_BUFFER
+    vec3 mo = u_amb_x + v_fresnel.xyz * vis + u_wide_x * wide;
+#else
     vec3 mo = u_amb_x + u_local_x * (v_fresnel.x * vis) + u_wide_x * wide;
-#if JD_ALBEDO
-    mo *= alb;
 #endif
-    vec3 col = v_fresnel.y * mo + spec * u_spec_x;
+#if JD_ALBEDO
+    // The view's Fresnel factor came with the colour (mesh.vert).
+    vec3 col = mo * alb + spec * u_spec_x;
+#else
+    vec3 col = JD_FT_V * mo + spec * u_spec_x;
+#endif
 #endif
 #else
 #if JD_ALBEDO
