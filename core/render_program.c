@@ -122,7 +122,11 @@ static void shade_locations(shade_prog *p)
  * runs these few trips shorter unrolled (VideoCore IV in two threads where
  * the loop held it to one: the blur at 5 trips 372 instructions a fragment
  * where the loop cost 1719 cycles; Adreno 3xx 455 -> 257; Midgard 152 -> 70
- * bundles; Vivante 210 -> 121) but Utgard, whose six registers spill it (lima 7:32 at 5 trips).
+ * bundles; Vivante 210 -> 121) but Utgard, whose six registers spill the
+ * blur unrolled (lima 118 words and 9:29 spills:fills at 5 trips, where the
+ * loop costs 150 words with none). Utgard's squares are unrolled: their
+ * loop spilled too (7:23, nearly all inside it: some 100 spill accesses a
+ * fragment at 4 trips) and cost 310 words; unrolled 211 words, 32:81.
  * The squares (4 trips at the default sizes) stay a loop on Vivante
  * GC400-GC2000 too: unrolled at 8 trips (two texels a trip) they passed
  * its 256-instruction limit, and at 4 (GC3000's build: 198) would leave
@@ -131,7 +135,7 @@ static void shade_locations(shade_prog *p)
 static int diffusion_trips(const jd_renderer *r, int first)
 {
     const jd_gl_caps *c = r->d.caps;
-    if (c->utgard) return 0;
+    if (c->utgard && !first) return 0;
     int trips;
     if (first) {
         int box = r->d.light_map_size / r->d.diffusion_size;
