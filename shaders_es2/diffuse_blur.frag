@@ -81,7 +81,7 @@ void tap(vec2 uv, float w, float zr, inout vec4 acc, inout float wsum)
 
 void main()
 {
-    float zr = dot(texture2D(u_ref, v_uv * u_ref_scale).xy, jd_bytes);
+    float zr = jd_depth(texture2D(u_ref, v_uv * u_ref_scale));
     // Normalised convolution on the light's coverage: near the object's
     // outline as the light sees it there is lit surface on one side and
     // nothing (not dark surface) on the other.

@@ -58,16 +58,16 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
 #ifdef JD_PCF_SCALAR
     // none's and single's with a colour: the vector form below spilled on
     // lima there (1:1, the colour held from the shader's start).
-    float s00 = step(l.z, dot(texture2D(depth, b).xy, jd_bytes));
-    float s10 = step(l.z, dot(texture2D(depth, b + vec2(d, 0.0)).xy, jd_bytes));
-    float s01 = step(l.z, dot(texture2D(depth, b + vec2(0.0, d)).xy, jd_bytes));
-    float s11 = step(l.z, dot(texture2D(depth, b + vec2(d, d)).xy, jd_bytes));
+    float s00 = step(l.z, jd_depth(texture2D(depth, b)));
+    float s10 = step(l.z, jd_depth(texture2D(depth, b + vec2(d, 0.0))));
+    float s01 = step(l.z, jd_depth(texture2D(depth, b + vec2(0.0, d))));
+    float s11 = step(l.z, jd_depth(texture2D(depth, b + vec2(d, d))));
     return mix(mix(s00, s10, f.x), mix(s01, s11, f.x), f.y);
 #else
     // The four tests and the first mix as vector operations: 2 of lima's
     // instruction words fewer than one texel at a time.
-    vec4 z = vec4(dot(texture2D(depth, b).xy, jd_bytes), dot(texture2D(depth, b + vec2(d, 0.0)).xy, jd_bytes),
-                  dot(texture2D(depth, b + vec2(0.0, d)).xy, jd_bytes), dot(texture2D(depth, b + vec2(d, d)).xy, jd_bytes));
+    vec4 z = vec4(jd_depth(texture2D(depth, b)), jd_depth(texture2D(depth, b + vec2(d, 0.0))),
+                  jd_depth(texture2D(depth, b + vec2(0.0, d))), jd_depth(texture2D(depth, b + vec2(d, d))));
     vec4 s = step(vec4(l.z), z);
     vec2 m = mix(s.xz, s.yw, f.x);
     return mix(m.x, m.y, f.y);

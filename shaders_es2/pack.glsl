@@ -37,6 +37,20 @@ float jd_unpack(vec4 p)
 // words (light.glsl, jd_lit_fraction).
 const vec2 jd_bytes = vec2(1.0, 1.0 / 255.0);
 
+// The same from the whole texel. Where depth is packed in two bytes the
+// third channel holds 0, and three channels by one dot product are one of
+// lima's instruction words where two took a multiply and an add. With the
+// three-byte packing (VideoCore IV, Adreno 3xx, where two lanes were the
+// shorter) the first two bytes, as above.
+float jd_depth(vec4 texel)
+{
+#if JD_PACK_HIGHP
+    return dot(texel.xy, jd_bytes);
+#else
+    return dot(texel.xyz, vec3(jd_bytes, 1.0));
+#endif
+}
+
 // Signed values in [-1,1], for the SH reduction. highp: the 3-byte packing of
 // s/2 + 0.5. mediump: an offset of 0.5 would spend fp16's 11 bits on the
 // offset, so the positive and negative parts get two bytes each and small

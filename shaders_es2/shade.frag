@@ -255,7 +255,7 @@ void main()
     // past its six registers (1:4 spills). The bias keeps the compilers
     // from merging the two; the map has no mip levels, so it reads the
     // same texels.
-    float sd = dot(texture2D(u_depth, v_shadow.xy, -1.0).xy, jd_bytes);
+    float sd = jd_depth(texture2D(u_depth, v_shadow.xy, -1.0));
     wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, sd, v_pos.w * u_slab_scale, lit);
 #endif
 #if JD_WIDE_ONLY

@@ -19,13 +19,12 @@ uniform sampler2D u_src;   // packed depth (RG): the light map, or this blur's f
 uniform vec2 u_c;          // c, exp2's exponent per light-depth unit, and 1 / c
 varying vec4 v_a, v_b, v_c; // the taps (soft_shadow.vert)
 
+
 void main()
 {
-    // Read as the shadow test reads depth (jd_bytes, pack.glsl).
-    vec3 a = vec3(dot(texture2D(u_src, v_a.xy).xy, jd_bytes), dot(texture2D(u_src, v_a.zw).xy, jd_bytes),
-                  dot(texture2D(u_src, v_b.xy).xy, jd_bytes));
-    vec3 b = vec3(dot(texture2D(u_src, v_b.zw).xy, jd_bytes), dot(texture2D(u_src, v_c.xy).xy, jd_bytes),
-                  dot(texture2D(u_src, v_c.zw).xy, jd_bytes));
+    // Read as the shadow test reads depth (jd_depth, pack.glsl).
+    vec3 a = vec3(jd_depth(texture2D(u_src, v_a.xy)), jd_depth(texture2D(u_src, v_a.zw)), jd_depth(texture2D(u_src, v_b.xy)));
+    vec3 b = vec3(jd_depth(texture2D(u_src, v_b.zw)), jd_depth(texture2D(u_src, v_c.xy)), jd_depth(texture2D(u_src, v_c.zw)));
     // Where nothing was drawn (depth 1, the cleared map) counts as the
     // deepest surface among the taps, not as a surface at the far end of
     // the light's box: exp2 of that far depth would outweigh every other
