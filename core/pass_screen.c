@@ -26,7 +26,7 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     /* full's programs read the exponential shadow map where the others
      * read the light map (light.glsl, jd_soft_lit). */
     glBindTexture(GL_TEXTURE_2D, p->soft_c >= 0 ? r->soft.tex : r->light.tex);
-    if (p->soft_c >= 0) glUniform3f(p->soft_c, jdr_soft_c(r), jdr_soft_c(r) / 255.0f, 0.0f);
+    if (p->soft_c >= 0) glUniform2f(p->soft_c, jdr_soft_c(r), jdr_soft_c(r) / 255.0f);
     if (p->local_x >= 0 || p->lw >= 0) { /* full: the local weight, the levels (either may be compiled out) */
         float lw[DIFF_LEVELS][3], ls[6] = {0}, wl[3] = {0};
         const jd_diffusion_fit *fit = &r->fit;

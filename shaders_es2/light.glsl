@@ -89,20 +89,12 @@ float jd_lit_fraction(sampler2D depth, vec3 l, vec2 size)
 // edge falls among the texels (docs/quality.md, "Artifacts, measured").
 // Declared in both stages at one precision, as GLSL ES asks of a uniform
 // they share.
-uniform mediump vec3 u_soft_c; // c and c / 255: the two bytes' weights; 0
+uniform mediump vec2 u_soft_c; // c and c / 255: the two bytes' weights
 float jd_soft_lit(sampler2D soft, vec3 p)
 {
-#if defined(JD_VERTEX_DIFFUSION) && JD_VERTEX_DIFFUSION
-    float e = dot(texture2D(soft, p.xy).xy, u_soft_c.xy);
-#else
-    // The texel's third channel weighed 0 (u_soft_c.z, made on the CPU):
-    // a three-lane dot product is one of lima's words, the two lanes were
-    // a multiply and two adds (its full shading 26 -> 25 words, Midgard
-    // 31 -> 30 cycles). Where the levels are summed per vertex the two
-    // lanes stay: Adreno 3xx's shading was 3-9 instructions longer so.
-    float e = dot(texture2D(soft, p.xy).xyz, u_soft_c);
-#endif
-    return min(exp2(e - p.z), 1.0);
+    // By one dot product where depth is packed in two bytes (jd_depth_by):
+    // lima's full shading 26 -> 25 words, Midgard 31 -> 30 cycles.
+    return min(exp2(jd_depth_by(texture2D(soft, p.xy), u_soft_c) - p.z), 1.0);
 }
 
 // The light a point takes from the levels and through thin parts, as one

@@ -37,18 +37,24 @@ float jd_unpack(vec4 p)
 // words (light.glsl, jd_lit_fraction).
 const vec2 jd_bytes = vec2(1.0, 1.0 / 255.0);
 
-// The same from the whole texel. Where depth is packed in two bytes the
-// third channel holds 0, and three channels by one dot product are one of
-// lima's instruction words where two took a multiply and an add. With the
-// three-byte packing (VideoCore IV, Adreno 3xx, where two lanes were the
-// shorter) the first two bytes, as above.
-float jd_depth(vec4 texel)
+// The same from the whole texel, the two bytes weighed by w (jd_bytes, or
+// those times a scale). Where depth is packed in two bytes the third
+// channel holds 0, and three channels by one dot product are one of lima's
+// instruction words where two took a multiply and an add (the third weight
+// is any but a constant 0, which the compiler would drop). With the
+// three-byte packing (VideoCore IV, Adreno 3xx, Vivante, where two lanes
+// were the shorter) the first two bytes, as above.
+float jd_depth_by(vec4 texel, vec2 w)
 {
 #if JD_PACK_HIGHP
-    return dot(texel.xy, jd_bytes);
+    return dot(texel.xy, w);
 #else
-    return dot(texel.xyz, vec3(jd_bytes, 1.0));
+    return dot(texel.xyz, vec3(w, w.y));
 #endif
+}
+float jd_depth(vec4 texel)
+{
+    return jd_depth_by(texel, jd_bytes);
 }
 
 // Signed values in [-1,1], for the SH reduction. highp: the 3-byte packing of

@@ -19,7 +19,6 @@ uniform sampler2D u_src;   // packed depth (RG): the light map, or this blur's f
 uniform vec2 u_c;          // c, exp2's exponent per light-depth unit, and 1 / c
 varying vec4 v_a, v_b, v_c; // the taps (soft_shadow.vert)
 
-
 void main()
 {
     // Read as the shadow test reads depth (jd_depth, pack.glsl).
