@@ -175,8 +175,13 @@ rows() { # DRIVER UNROLL
         # A program built again (jade info --compile builds the colour
         # variants with a second renderer) keeps its first row.
         /^jade: compiling program / { flush(); label = $4 $5; vs = fs = vc = fc = extra = status = ""; spills = fills = 0
-                                      again = ($5 in seen); seen[$5] = 1; next }
+                                      again = ($5 in seen); seen[$5] = 1; open = 1; next }
+        # The program is built: what the driver compiles after it (its own
+        # internal shaders: lima and panfrost build clear and resolve
+        # programs when a target takes samples) belongs to no program.
+        /^program +[0-9]+ / { if ($0 ~ /FAILED/) { status = "FAILED:" $0; gsub(/ /, "_", status) } open = 0; next }
         /shader compiler: / {
+            if (!open) next
             line = $0; sub(/.*shader compiler: /, "", line)
             if (line ~ /COORD|^BVERT/) next   # vc4, freedreno: the binning copy of the vertex shader
             n = split(line, w, /[ ,]+/)
@@ -201,7 +206,6 @@ rows() { # DRIVER UNROLL
             next
         }
         /Failed to register allocate/ { status = "FAILED:register-allocation" }
-        /^program +[0-9]+ .*FAILED/ { status = "FAILED:" $0; gsub(/ /, "_", status) }
         END { flush(); if (rc != 0 && rc != 1) printf "%-14s %-62s exit %s (see the log)\n", drv, "(run)", rc }
     ' "$cache/$1.$2.log"
 }
