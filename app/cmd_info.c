@@ -60,6 +60,9 @@ static int compile_colour_variants(jd_session *s, jd_options *o)
     rd.height = o->height;
     rd.max_width = o->width;
     rd.max_height = o->height;
+    /* The anti-aliasing pass is built here: the first renderer has none
+     * where the headless target is multisampled (lima, panfrost). */
+    rd.antialias = JD_AA_POST;
     /* Twice: every vertex textured, then one not (a model whose materials
      * are partly untextured). */
     for (int partial = 0; partial < 2; partial++) {
@@ -213,10 +216,7 @@ int jd_cmd_info(int argc, char **argv)
     printf("full's diffusion   %s\n", c.max_vertex_texture_units >= 6 ? "per vertex" : "per fragment, at half resolution (under 6 vertex texture units)");
     /* The target jade draws into here: EXT_multisampled_render_to_texture
      * makes the headless one multisampled where the driver has it. */
-    GLint samples = 0;
-    glBindFramebuffer(GL_FRAMEBUFFER, jd_platform_framebuffer(p));
-    glGetIntegerv(GL_SAMPLES, &samples);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    int samples = jd_platform_samples(p);
     if (prof)
         printf("anti-aliasing      %s\n", prof->antialias);
     else if (samples > 1)

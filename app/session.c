@@ -232,6 +232,7 @@ static int make_renderer(jd_session *s, jd_options *o, const char *cmd)
     jd_platform_max_size(s->platform, &rd.max_width, &rd.max_height);
     rd.rotation = o->rotation;
     rd.get_proc = jd_platform_gl_proc;
+    rd.target_samples = jd_platform_samples(s->platform);
     if (jd_renderer_create(&rd, &s->arena, &s->renderer, &err)) {
         fprintf(stderr, "jade %s: %s: %s\n", cmd, s->mesh_path, err.msg);
         return 0;

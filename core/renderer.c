@@ -113,9 +113,9 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
 
     if (d->antialias < JD_AA_AUTO || d->antialias > JD_AA_POST)
         return jd_fail(err, JD_ERR_ARG, "anti-aliasing %d must be auto, off or post", (int)d->antialias);
-    GLint samples = 0;
+    GLint samples = d->target_samples;
     glBindFramebuffer(GL_FRAMEBUFFER, d->target_fbo);
-    glGetIntegerv(GL_SAMPLES, &samples);
+    if (samples <= 0) glGetIntegerv(GL_SAMPLES, &samples);
     r->target_samples = samples;
     r->post_aa = d->antialias == JD_AA_POST || (d->antialias == JD_AA_AUTO && samples <= 1);
     if (d->render_scale != 0.0f && !(d->render_scale >= 0.25f && d->render_scale <= 1.0f))

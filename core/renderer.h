@@ -62,6 +62,12 @@ typedef struct jd_renderer_desc {
      * (Mali-400/450, VideoCore IV) at 960 rows and more, less; the line
      * jd_renderer_info.tier says which] */
     float render_scale;
+    /* Samples per pixel of target_fbo. [0: its GL_SAMPLES] A caller whose
+     * framebuffer's colour is attached by EXT_multisampled_render_to_texture
+     * says so here: Mesa 22.3's GL_SAMPLES reads 0 for it, and the renderer
+     * would run its anti-aliasing pass over a picture already multisampled
+     * (jd_platform_samples knows the headless target's). */
+    int target_samples;
 } jd_renderer_desc;
 
 /* What a frame shows. jd_scene_defaults fills a sensible one. */
@@ -176,7 +182,7 @@ typedef struct jd_renderer_info {
     int highp;                /* SH packing: 1 three bytes (fragment highp), 0 two (mediump) */
     int vertex_thickness;     /* thickness read per vertex (vertex texture units), else per fragment */
     int gpu_timer;            /* GL_EXT_disjoint_timer_query: per-pass GPU times with timing on */
-    int target_samples;       /* samples per pixel of the target (GL_SAMPLES) */
+    int target_samples;       /* samples per pixel of the target (desc.target_samples, or GL_SAMPLES) */
     int post_antialias;       /* the anti-aliasing pass runs after each frame */
     int render_width, render_height; /* the picture's passes' size (render_scale) */
     const char *tier;         /* NULL, or one line: the resolution this device's tier draws at, and why */

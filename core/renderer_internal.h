@@ -103,7 +103,7 @@ struct jd_renderer {
     int timing; /* jd_renderer_set_timing */
     int vertex_thickness; /* thickness read in the vertex stage */
     int vertex_diffusion; /* the full mode's levels summed in the vertex stage */
-    int target_samples;   /* GL_SAMPLES of the platform's target */
+    int target_samples;   /* samples of the target: desc.target_samples, or GL_SAMPLES */
     int post_aa;          /* frames go to `scene`, then through the anti-aliasing pass */
     int may_scale;        /* render_scale may be under 1 at some size: `scene` and the upscale pass exist */
     int iw, ih;           /* the picture's passes' size: width x height, or less (render_scale) */

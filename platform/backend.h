@@ -23,6 +23,8 @@ typedef struct jd_platform_ops {
     int (*scale_out)(void *impl, int w, int h);
     /* The size the display shows (optional: size). */
     void (*display_size)(const void *impl, int *w, int *h);
+    /* Samples per pixel of framebuffer (optional: GL_SAMPLES of it). */
+    int (*samples)(const void *impl);
 } jd_platform_ops;
 
 extern const jd_platform_ops jd_headless_ops;

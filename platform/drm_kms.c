@@ -1053,5 +1053,5 @@ static void drm_close(void *impl)
 
 const jd_platform_ops jd_drm_ops = {
     "drm", drm_probe, drm_open, drm_size, drm_max_size, drm_framebuffer, drm_present, drm_poll, drm_stats, drm_describe, drm_close,
-    drm_capture, drm_scale_out, drm_display_size,
+    drm_capture, drm_scale_out, drm_display_size, NULL /* samples: the EGL config's, GL_SAMPLES */,
 };

@@ -23,6 +23,7 @@ struct jd_platform_headless {
     EGLSurface surf;
     GLuint fbo, color, depth;
     int w, h;
+    int samples; /* attached with EXT_multisampled_render_to_texture, else 0 */
     char describe[160];
 };
 
@@ -146,6 +147,7 @@ static jd_result headless_open(const jd_platform_desc *desc, void **out, jd_erro
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, p->depth);
         st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
         while (glGetError() != GL_NO_ERROR) {}
+        p->samples = st == GL_FRAMEBUFFER_COMPLETE ? 4 : 0;
     }
     if (st != GL_FRAMEBUFFER_COMPLETE) {
         glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, tw, th);
@@ -170,6 +172,7 @@ static void headless_size(const void *impl, int *w, int *h)
 
 static unsigned headless_framebuffer(const void *impl) { return ((const jd_headless *)impl)->fbo; }
 static const char *headless_describe(const void *impl) { return ((const jd_headless *)impl)->describe; }
+static int headless_samples(const void *impl) { return ((const jd_headless *)impl)->samples; }
 
 static jd_result headless_present(void *impl, jd_error *err)
 {
@@ -209,5 +212,5 @@ static void headless_close(void *impl)
 const jd_platform_ops jd_headless_ops = {
     "headless", NULL, headless_open, headless_size, headless_size, headless_framebuffer, headless_present,
     headless_poll, headless_stats, headless_describe, headless_close, NULL /* no display to read back */,
-    NULL /* nothing to scan out */, NULL,
+    NULL /* nothing to scan out */, NULL, headless_samples,
 };

@@ -69,6 +69,16 @@ void jd_platform_display_size(const jd_platform *p, int *w, int *h)
     else p->ops->size(p->impl, w, h);
 }
 unsigned jd_platform_framebuffer(const jd_platform *p) { return p->ops->framebuffer(p->impl); }
+int jd_platform_samples(const jd_platform *p)
+{
+    if (p->ops->samples) return p->ops->samples(p->impl);
+    GLint samples = 0, was = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &was);
+    glBindFramebuffer(GL_FRAMEBUFFER, jd_platform_framebuffer(p));
+    glGetIntegerv(GL_SAMPLES, &samples);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)was);
+    return samples;
+}
 jd_result jd_platform_present(jd_platform *p, jd_error *err) { return p->ops->present(p->impl, err); }
 int jd_platform_poll(jd_platform *p, jd_event *ev)
 {

@@ -68,6 +68,12 @@ void jd_platform_size(const jd_platform *p, int *w, int *h);
 void jd_platform_max_size(const jd_platform *p, int *w, int *h);
 /* The GL framebuffer object frames go to (0 for a window surface). */
 unsigned jd_platform_framebuffer(const jd_platform *p);
+/* Samples per pixel of that framebuffer (0 or 1: one). The headless target
+ * says what it attached: Mesa 22.3's GL_SAMPLES reads 0 for a framebuffer
+ * whose colour EXT_multisampled_render_to_texture attached with samples
+ * (it takes the colour texture's own count), though it draws with them;
+ * the others ask GL_SAMPLES, which an EGL config's samples answer. */
+int jd_platform_samples(const jd_platform *p);
 jd_result jd_platform_present(jd_platform *p, jd_error *err);
 /* Top-down RGBA8 rows of the frame just drawn (call before present). */
 jd_result jd_platform_read_rgba(jd_platform *p, uint8_t *dst, jd_error *err);

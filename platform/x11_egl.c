@@ -273,4 +273,5 @@ static void x11_close(void *impl)
 const jd_platform_ops jd_x11_ops = {
     "x11", x11_probe, x11_open, x11_size, x11_max_size, x11_framebuffer, x11_present, x11_poll, x11_stats, x11_describe, x11_close,
     NULL /* the X server composes; no writeback */, NULL /* nor a plane of jade's own to scale */, NULL,
+    NULL /* samples: the EGL config's, GL_SAMPLES */,
 };

@@ -83,6 +83,7 @@ int main()
         FN(jd_platform_present_stats),
         FN(jd_platform_probe),
         FN(jd_platform_read_rgba),
+        FN(jd_platform_samples),
         FN(jd_platform_scale_out),
         FN(jd_platform_size),
         FN(jd_platform_time_ms),
