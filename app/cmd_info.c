@@ -102,6 +102,9 @@ static int compile_all(jd_options *o)
     jd_program_extra_defines(NULL);
     if (ok) printf("jade info --compile: %d programs built for %s (%s), none failed\n", l.count, s.caps.renderer,
                    o->profile ? o->profile : "no profile");
+    /* The picture's targets were made too: whether the driver took samples
+     * in the one the picture is drawn into before it is enlarged. */
+    if (ok) printf("%s\n", jd_antialias_describe(s.renderer));
     jd_session_close(&s);
     return ok && !l.failed ? 0 : 1;
 }
@@ -231,6 +234,12 @@ int jd_cmd_info(int argc, char **argv)
     printf("  OES_texture_npot            %s (not needed: jade clamps NPOT)\n", c.ext_texture_npot ? "yes" : "no");
     printf("  OES_depth_texture           %s (not needed: depth packed in RGBA8)\n", c.ext_depth_texture ? "yes" : "no");
     printf("  OES_texture_float           %s (not needed: SH packed in RGBA8)\n", c.ext_texture_float ? "yes" : "no");
+    if (c.ext_multisampled_render_to_texture)
+        printf("  EXT_multisampled_render_to_texture yes, %d samples (a picture drawn smaller is multisampled before it "
+               "is enlarged)\n", c.max_samples);
+    else
+        printf("  EXT_multisampled_render_to_texture no (where the target is multisampled, a picture drawn smaller "
+               "keeps the edges it was drawn with)\n");
     jd_platform_close(p);
     return 0;
 }

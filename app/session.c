@@ -265,17 +265,23 @@ const char *jd_session_triangles(const jd_session *s, char *buf, size_t cap)
 
 const char *jd_antialias_describe(const jd_renderer *r)
 {
-    static char line[160];
+    static char line[400];
     jd_renderer_info info;
     jd_renderer_get_info(r, &info);
     int samples = info.target_samples;
     if (info.post_antialias)
         snprintf(line, sizeof line, "anti-aliasing: a pass after the frame (the target has no multisampling)");
+    else if (samples > 1 && info.tier && info.picture_samples > 1)
+        snprintf(line, sizeof line, "anti-aliasing: %dx multisampling in the picture drawn at %dx%d "
+                 "(EXT_multisampled_render_to_texture), then enlarged", info.picture_samples, info.render_width,
+                 info.render_height);
     else if (samples > 1 && info.tier)
         /* Drawn smaller into a texture of one sample, then enlarged: the
          * target's samples see only the enlarging pass's quad. */
         snprintf(line, sizeof line, "anti-aliasing: none on the picture drawn at %dx%d (the target's %dx multisampling "
-                 "sees only the enlarging)", info.render_width, info.render_height, samples);
+                 "sees only the enlarging%s%s)", info.render_width, info.render_height, samples,
+                 info.samples_note ? "; " : ": no EXT_multisampled_render_to_texture to draw it with samples",
+                 info.samples_note ? info.samples_note : "");
     else if (samples > 1)
         snprintf(line, sizeof line, "anti-aliasing: %dx multisampling in the target", samples);
     else

@@ -97,6 +97,8 @@ jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)
     c->ext_rgb8_rgba8 = jd_gl_has_extension("GL_OES_rgb8_rgba8");
     c->ext_texture_npot = jd_gl_has_extension("GL_OES_texture_npot");
     c->ext_standard_derivatives = jd_gl_has_extension("GL_OES_standard_derivatives");
+    c->ext_multisampled_render_to_texture = jd_gl_has_extension("GL_EXT_multisampled_render_to_texture");
+    if (c->ext_multisampled_render_to_texture) glGetIntegerv(GL_MAX_SAMPLES_EXT, &c->max_samples);
     const char *all = (const char *)glGetString(GL_EXTENSIONS);
     for (const char *p = all; p && *p; p++)
         if (*p != ' ' && (p == all || p[-1] == ' ')) c->num_extensions++;

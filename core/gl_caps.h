@@ -20,6 +20,11 @@ typedef struct jd_gl_caps {
     int ext_element_index_uint, ext_disjoint_timer_query, ext_depth_texture,
         ext_texture_float, ext_packed_depth_stencil, ext_rgb8_rgba8, ext_texture_npot,
         ext_standard_derivatives;
+    /* EXT_multisampled_render_to_texture: a texture drawn into with samples
+     * that live in a tiler's tile buffer and are resolved as each tile is
+     * written out (Mesa's lima and panfrost have it); max_samples is its
+     * GL_MAX_SAMPLES_EXT (0 without it). */
+    int ext_multisampled_render_to_texture, max_samples;
     int num_extensions;
     int utgard; /* Mali-400/450 and kin by renderer string: fp16 fragments whatever the query says */
     int small_register_file; /* VideoCore IV, Mali-400/450 (by name or profile): shaders kept small */

@@ -4,6 +4,7 @@
 #include "renderer_internal.h"
 #include "mesh_load.h"
 
+#include <stdio.h>
 #include <string.h>
 
 /* ---- start-up ---------------------------------------------------------- */
@@ -64,7 +65,17 @@ static void clear_whole(void)
 jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_depth, int linear,
                              const char *what, jd_error *err)
 {
+    return jdr_make_target_ms(r, t, w, h, with_depth, linear, 0, what, err);
+}
+
+/* The same, drawn with `samples` (> 1) that EXT_multisampled_render_to_texture
+ * keeps in the tile buffer and resolves into the texture; one sample where
+ * the driver will not (jdr_fit_target). */
+jd_result jdr_make_target_ms(jd_renderer *r, target *t, int w, int h, int with_depth, int linear, int samples,
+                             const char *what, jd_error *err)
+{
     memset(t, 0, sizeof *t);
+    t->samples = samples > 1 ? samples : 0;
     glGenFramebuffers(1, &t->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
     if (with_depth) {
@@ -73,6 +84,27 @@ jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_dept
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
     }
     return jdr_fit_target(r, t, w, h, linear, what, err);
+}
+
+/* The texture and depth of `t` attached with t->samples: 1 where the
+ * framebuffer is complete so. Otherwise it is left for one sample and
+ * r->ms_note says why: a driver may list the extension and refuse a
+ * format or a size with samples, and the picture is drawn all the same. */
+static int attach_multisampled(jd_renderer *r, target *t, const char *what)
+{
+    while (glGetError() != GL_NO_ERROR) {}
+    if (t->depth) {
+        glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
+        r->ms.storage(GL_RENDERBUFFER, t->samples, GL_DEPTH_COMPONENT16, t->tw, t->th);
+    }
+    r->ms.texture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0, t->samples);
+    GLenum e = glGetError(), st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (e == GL_NO_ERROR && st == GL_FRAMEBUFFER_COMPLETE) return 1;
+    snprintf(r->ms_note, sizeof r->ms_note, "%s %dx%d with %d samples refused by the driver (GL error 0x%x, "
+             "framebuffer 0x%x): drawn with one", what, t->tw, t->th, t->samples, e, st);
+    t->samples = 0;
+    while (glGetError() != GL_NO_ERROR) {}
+    return 0;
 }
 
 /* A target's storage for w x h: made at start-up, and made again for the
@@ -93,20 +125,26 @@ jd_result jdr_fit_target(jd_renderer *r, target *t, int w, int h, int linear, co
     if (tw > r->d.caps->max_texture_size || th > r->d.caps->max_texture_size)
         return jd_fail(err, JD_ERR_UNSUPPORTED, "%s target %dx%d exceeds the max texture size %d", what, tw, th,
                        r->d.caps->max_texture_size);
-    size_t texel = t->depth ? 6 : 4;
+    /* Bytes a texel: the colour's 4 (samples live in tile memory and are
+     * resolved into it) and the depth's 2 a sample. */
+    size_t texel = t->depth ? 4 + 2 * (size_t)(t->samples > 1 ? t->samples : 1) : 4;
     while (glGetError() != GL_NO_ERROR) {}
     glDeleteTextures(1, &t->tex);
     r->target_bytes -= (size_t)t->tw * t->th * texel;
     t->tex = jdr_new_texture(tw, th, linear ? GL_LINEAR : GL_NEAREST);
     t->tw = tw;
     t->th = th;
-    r->target_bytes += (size_t)tw * th * texel;
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
-    if (t->depth) {
-        glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, tw, th);
+    if (!(t->samples > 1 && r->ms.texture && attach_multisampled(r, t, what))) {
+        t->samples = 0;
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->tex, 0);
+        if (t->depth) {
+            glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
+            glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT16, tw, th);
+        }
     }
+    texel = t->depth ? 4 + 2 * (size_t)(t->samples > 1 ? t->samples : 1) : 4;
+    r->target_bytes += (size_t)tw * th * texel;
     GLenum e = glGetError(), st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (e == GL_OUT_OF_MEMORY)
         return jd_fail(err, JD_ERR_GL, "%s target %dx%d: the GPU is out of memory", what, tw, th);

@@ -237,8 +237,21 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     /* These two follow the picture's size: jd_renderer_resize makes their
      * storage (jdr_fit_target). */
     if (!r->vertex_diffusion && (res = jdr_make_target(r, &r->wide, 1, 1, 1, 1, "full's levels", err))) goto fail;
+    /* A picture drawn smaller and enlarged by the GPU: the target's samples
+     * would see only the enlarging pass's quad, and the edges be as drawn at
+     * the smaller size. Where the GPU draws a texture with samples in its
+     * tile buffer (EXT_multisampled_render_to_texture: Mesa's lima and
+     * panfrost, ARM's drivers), the picture is drawn so, at the target's
+     * count: the samples never leave the chip, and each tile is resolved as
+     * it is written out, as the target's own are. */
+    if (d->antialias == JD_AA_AUTO && samples > 1 && r->may_scale && d->get_proc &&
+        d->caps->ext_multisampled_render_to_texture && d->caps->max_samples > 1) {
+        r->ms.texture = (PFNGLFRAMEBUFFERTEXTURE2DMULTISAMPLEEXTPROC)d->get_proc("glFramebufferTexture2DMultisampleEXT");
+        r->ms.storage = (PFNGLRENDERBUFFERSTORAGEMULTISAMPLEEXTPROC)d->get_proc("glRenderbufferStorageMultisampleEXT");
+        if (r->ms.texture && r->ms.storage) r->ms.samples = samples < d->caps->max_samples ? samples : d->caps->max_samples;
+    }
     if ((r->post_aa || r->may_scale) &&
-        (res = jdr_make_target(r, &r->scene, 1, 1, 1, 1, "frame before anti-aliasing", err)))
+        (res = jdr_make_target_ms(r, &r->scene, 1, 1, 1, 1, r->ms.samples, "frame before anti-aliasing", err)))
         goto fail;
     for (int i = 0; i < DIFF_TEXTURES; i++)
         if ((res = jdr_make_target(r, &r->diff_lv[i], d->diffusion_size >> ((i + 1) / 2),
@@ -340,6 +353,8 @@ void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
     info->gpu_timer = r->tq.ok;
     info->target_samples = r->target_samples;
     info->post_antialias = r->post_aa;
+    info->picture_samples = jdr_via_scene(r) ? r->scene.samples : r->target_samples;
+    info->samples_note = r->ms_note[0] ? r->ms_note : NULL;
     info->render_width = r->iw;
     info->render_height = r->ih;
     info->tier = r->tier[0] ? r->tier : NULL;

@@ -20,8 +20,10 @@ extern "C" {
 typedef enum jd_mode { JD_MODE_NONE = 0, JD_MODE_SINGLE, JD_MODE_DUAL, JD_MODE_FULL, JD_MODE_COUNT } jd_mode;
 typedef enum jd_precision { JD_PRECISION_AUTO = 0, JD_PRECISION_HIGHP, JD_PRECISION_MEDIUMP } jd_precision;
 /* Edges: AUTO leaves them to a multisampled target (GL_SAMPLES > 1: an EGL
- * config with samples, free on tile-based GPUs) and otherwise smooths them
- * in a pass after the frame (one full-size render target more). */
+ * config with samples, free on tile-based GPUs; a picture drawn smaller for
+ * it is drawn with the target's samples where the GPU has
+ * EXT_multisampled_render_to_texture) and otherwise smooths them in a pass
+ * after the frame (one full-size render target more). */
 typedef enum jd_antialias { JD_AA_AUTO = 0, JD_AA_OFF, JD_AA_POST } jd_antialias;
 /* The start-up check that every program draws (core/program_probe.c): two
  * small read-backs, and every program's shaders compiled at once rather
@@ -184,6 +186,11 @@ typedef struct jd_renderer_info {
     int gpu_timer;            /* GL_EXT_disjoint_timer_query: per-pass GPU times with timing on */
     int target_samples;       /* samples per pixel of the target (desc.target_samples, or GL_SAMPLES) */
     int post_antialias;       /* the anti-aliasing pass runs after each frame */
+    /* Samples per pixel the picture is drawn with: the target's, or where it
+     * is drawn smaller and enlarged, its own (EXT_multisampled_render_to_texture;
+     * 0 or 1: one) */
+    int picture_samples;
+    const char *samples_note; /* NULL, or one line: samples asked for the picture and refused by the driver */
     int render_width, render_height; /* the picture's passes' size (render_scale) */
     const char *tier;         /* NULL, or one line: the resolution this device's tier draws at, and why */
     const jd_mesh *proxy;     /* the coarse mesh the light-space passes draw */

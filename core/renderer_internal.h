@@ -44,6 +44,7 @@ typedef struct target {
     GLuint tex, fbo, depth;
     int w, h;   /* used */
     int tw, th; /* allocated, powers of two */
+    int samples; /* > 1: drawn with that many samples, resolved into tex (EXT_multisampled_render_to_texture) */
 } target;
 
 static inline int pot(int n)
@@ -97,6 +98,14 @@ typedef struct timer_query {
     int ok, used[JD_PASS_COUNT];
 } timer_query;
 
+/* GL_EXT_multisampled_render_to_texture, resolved at start-up where the
+ * frame drawn smaller takes the target's samples. */
+typedef struct ms_render {
+    PFNGLFRAMEBUFFERTEXTURE2DMULTISAMPLEEXTPROC texture;
+    PFNGLRENDERBUFFERSTORAGEMULTISAMPLEEXTPROC storage;
+    int samples; /* asked of `scene`: the target's, at most the extension's GL_MAX_SAMPLES_EXT; 0: none */
+} ms_render;
+
 struct jd_renderer {
     jd_renderer_desc d;
     int highp;
@@ -130,6 +139,8 @@ struct jd_renderer {
     float albedo_key[8], albedo_reach_mm; /* the material the entry's radius was found for, and it */
     float fresnel_eta, fresnel[2]; /* the eta full's Fresnel factor was fitted at, and the fit */
     timer_query tq;
+    ms_render ms;
+    char ms_note[160];    /* "", or why `scene` was made with one sample where samples were asked */
     uint8_t *tail_px;     /* TAIL_SIZE RGBA texels, rebuilt when the material changes */
     float tail_key[9];
     GLuint spec_tex;      /* full without vertex diffusion: the highlight by (n.n, n.h), SPEC_W x SPEC_H luminance */
@@ -233,6 +244,8 @@ jd_result jdr_upload_albedo(jd_renderer *r, const jd_mesh *m, jd_arena *a, jd_er
 GLuint jdr_new_texture(int w, int h, GLint filter);
 GLuint jdr_new_table(int w, int h);
 jd_result jdr_make_target(jd_renderer *r, target *t, int w, int h, int with_depth, int linear,
+                             const char *what, jd_error *err);
+jd_result jdr_make_target_ms(jd_renderer *r, target *t, int w, int h, int with_depth, int linear, int samples,
                              const char *what, jd_error *err);
 jd_result jdr_make_cube_target(jd_renderer *r, target *faces, int size, const char *what, jd_error *err);
 void jdr_free_target(target *t);

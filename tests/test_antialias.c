@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "check.h"
+#include "gl_fixture.h"
 #include "mesh_load.h"
 #include "platform.h"
 #include "renderer.h"
@@ -12,8 +13,6 @@
 enum { W = 256, H = 256 };
 static unsigned char mem[32 << 20];
 static uint8_t pic[2][W * H * 4];
-
-static int lum(const uint8_t *p) { return (299 * p[0] + 587 * p[1] + 114 * p[2]) / 1000; }
 
 int main(int argc, char **argv)
 {
@@ -26,12 +25,9 @@ int main(int argc, char **argv)
     jd_platform_desc pd = {.kind = "headless", .width = W, .height = H, .single_sample = 1};
     if (jd_platform_open(&pd, &P, &err)) { printf("%s\n", err.msg); return 1; }
     jd_gl_caps caps;
-    jd_gl_caps_query(&caps, &err);
     jd_arena a;
-    jd_arena_init(&a, mem, sizeof mem);
     jd_mesh mesh;
-    jd_load_desc ld = {.path = path, .allow_32bit_indices = 1};
-    if (jd_mesh_load_draco(&ld, &a, &mesh, NULL, &err)) { printf("%s\n", err.msg); return 1; }
+    if (jd_test_fixture(path, mem, sizeof mem, &caps, &a, &mesh)) return 1;
     size_t mark = jd_arena_mark(&a);
     const jd_antialias modes[2] = {JD_AA_OFF, JD_AA_POST};
     for (int k = 0; k < 2; k++) {
@@ -56,15 +52,15 @@ int main(int argc, char **argv)
         for (int x = 1; x < W - 1; x++) {
             int i = y * W + x;
             for (int k = 0; k < 2; k++) {
-                int c = lum(pic[k] + 4 * i);
-                steps[k] += abs(c - lum(pic[k] + 4 * (i + 1))) >= 64;
-                steps[k] += abs(c - lum(pic[k] + 4 * (i + W))) >= 64;
+                int c = jd_test_luma(pic[k] + 4 * i);
+                steps[k] += abs(c - jd_test_luma(pic[k] + 4 * (i + 1))) >= 64;
+                steps[k] += abs(c - jd_test_luma(pic[k] + 4 * (i + W))) >= 64;
             }
             /* Away from edges: the 3x3 neighbourhood within 8 levels. */
             int lo = 255, hi = 0;
             for (int dy = -1; dy <= 1; dy++)
                 for (int dx = -1; dx <= 1; dx++) {
-                    int c = lum(pic[0] + 4 * (i + dy * W + dx));
+                    int c = jd_test_luma(pic[0] + 4 * (i + dy * W + dx));
                     lo = c < lo ? c : lo;
                     hi = c > hi ? c : hi;
                 }

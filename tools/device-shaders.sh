@@ -227,6 +227,19 @@ for d in lima vc4 panfrost-t720 panfrost-t860 etnaviv-gc400 etnaviv-gc2000 etnav
 done > "$table"
 echo "device-shaders: one row per driver and program (instructions per stage as each compiler counts them):"
 cat "$table"
+# 5. The picture drawn smaller (info --compile's render scale 0.5) into a
+#    texture with the headless target's samples: the driver's framebuffer
+#    made complete with them (EXT_multisampled_render_to_texture), or why not.
+#    Mesa 22.3.6's lima and panfrost list the extension (panfrost runs under
+#    the generic profile here, which promises no extension); lima listing it
+#    and refusing the framebuffer would leave Mali-400's enlarged pictures
+#    without anti-aliased edges, and --check fails on it.
+ms_bad=0
+for d in lima vc4 panfrost-t720 panfrost-t860 etnaviv-gc2000 freedreno-a306; do
+    line=$(grep -m1 '^anti-aliasing' "$cache/$d.0.log" || echo "no anti-aliasing line (see $cache/$d.0.log)")
+    echo "device-shaders: $d: $line"
+    case $d in lima) case $line in *"multisampling in the picture drawn at"*) ;; *) ms_bad=1 ;; esac ;; esac
+done
 case $mode in
     update) cp "$table" "$expected"; echo "device-shaders: wrote $expected" ;;
     check)
@@ -263,5 +276,6 @@ case $mode in
             }
             END { exit bad }
         ' "$expected" "$table" && echo "device-shaders: within the committed budget and the GPUs' limits ($expected)"
+        [ "$ms_bad" -eq 0 ] || { echo "device-shaders: lima drew the smaller picture without samples (above)"; exit 1; }
         ;;
 esac
