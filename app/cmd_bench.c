@@ -177,10 +177,14 @@ int jd_cmd_bench(int argc, char **argv)
                                 argc, argv);
     if (rc >= 0) return rc;
     if (!o.frames) o.frames = 200;
-    /* The boards take their edges from a multisampled EGL config (4x,
-     * shaded once per pixel on their tile buffers): no pass after the
-     * frame, as there. */
-    if (o.device && o.rdesc.antialias == JD_AA_AUTO) o.rdesc.antialias = JD_AA_OFF;
+    /* A board draws its edges as its display does under Mesa: from a 4x
+     * multisampled EGL config (shaded once per pixel on a tile buffer) with
+     * no pass after the frame, or, where the driver offers no such config
+     * (etnaviv, freedreno's a3xx), with the pass after the frame. */
+    if (o.device && o.rdesc.antialias == JD_AA_AUTO) {
+        const jd_board *b = jd_board_find(o.device);
+        o.rdesc.antialias = b && !b->multisampled ? JD_AA_POST : JD_AA_OFF;
+    }
 
     jd_session s;
     if (!jd_session_open(&s, &o, "bench")) { jd_session_close(&s); return 1; }

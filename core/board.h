@@ -38,6 +38,13 @@ typedef struct jd_board {
     int vertex_cache;       /* 0: every vertex of a draw's index range shaded once; N: a FIFO of N */
     double dram_gbs;        /* peak memory bandwidth, GB/s */
     const char *sources;
+    /* 1: the board's Mesa driver offers the display a 4x multisampled EGL
+     * config, which takes the edges (lima, vc4, panfrost); 0: it offers
+     * none, and the pass after the frame smooths them every frame
+     * (etnaviv only with ETNA_MESA_DEBUG=msaa, freedreno's a3xx never:
+     * Mesa 22.3.6's etnaviv_screen.c, fd3_screen.c). bench --device draws
+     * as that display does. */
+    int multisampled;
 } jd_board;
 
 extern const jd_board jd_boards[];

@@ -253,6 +253,9 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     if ((r->post_aa || r->may_scale) &&
         (res = jdr_make_target_ms(r, &r->scene, 1, 1, 1, 1, r->ms.samples, "frame before anti-aliasing", err)))
         goto fail;
+    if (r->post_aa && r->may_scale &&
+        (res = jdr_make_target(r, &r->aa_mid, 1, 1, 0, 1, "anti-aliased frame before enlarging", err)))
+        goto fail;
     for (int i = 0; i < DIFF_TEXTURES; i++)
         if ((res = jdr_make_target(r, &r->diff_lv[i], d->diffusion_size >> ((i + 1) / 2),
                                    d->diffusion_size >> ((i + 1) / 2), 0, 1,
@@ -274,7 +277,8 @@ void jd_renderer_destroy(jd_renderer *r)
 {
     if (!r) return;
     target *ts[] = {&r->light,   &r->atlas,   &r->sh1,      &r->sh_mid_t, &r->sh2,   &r->sh3, &r->spread0,
-                    &r->spread_tmp, &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->wide, &r->soft_tmp, &r->soft};
+                    &r->spread_tmp, &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->aa_mid, &r->wide, &r->soft_tmp,
+                    &r->soft};
     for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++) jdr_free_target(ts[i]);
     for (int i = 0; i < DIFF_TEXTURES; i++) jdr_free_target(&r->diff_lv[i]);
     for (int i = 0; i < 6; i++) jdr_free_target(&r->irr[i]); /* the cube's texture goes with the first */
@@ -323,8 +327,12 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
      * picture's resolution (a frame may use less of it: jd_renderer_frame). */
     jd_result res = JD_OK;
     int via = r->post_aa || width != r->d.width || height != r->d.height;
+    int scaled = width != r->d.width || height != r->d.height;
     if (r->scene.fbo)
         res = jdr_fit_target(r, &r->scene, via ? width : 0, via ? height : 0, 1, "frame before anti-aliasing", err);
+    if (!res && r->aa_mid.fbo)
+        res = jdr_fit_target(r, &r->aa_mid, scaled ? width : 0, scaled ? height : 0, 1,
+                             "anti-aliased frame before enlarging", err);
     if (!res && r->wide.fbo) res = jdr_fit_target(r, &r->wide, (width + 1) / 2, (height + 1) / 2, 1, "full's levels", err);
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     if (res) return res;

@@ -178,6 +178,9 @@ struct jd_renderer {
      * result, and the map the shading reads in place of the light map. */
     target soft_tmp, soft;
     target scene;         /* the frame before anti-aliasing or enlarging (post_aa, or drawn smaller) */
+    /* post_aa with the picture drawn smaller: `scene` anti-aliased at its
+     * own size, which the enlarging then reads (one texel where unused). */
+    target aa_mid;
     target wide;          /* full's levels summed at a lower resolution (without vertex diffusion) */
     /* The object's extent on screen in NDC (x0, y0, x1, y1) for the pass
      * after the frame, and the transform it was found for. */
