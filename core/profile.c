@@ -23,14 +23,15 @@ const jd_profile jd_profiles[] = {
      "GC2000, 8 on GC400; Mesa reports 16); programs of at most 256 instructions per stage (no instruction cache "
      "before GC3000). GC400 has no vertex samplers: jade reads its caps and draws thickness per fragment there",
      "4x multisampling in the EGL config where the driver offers one (resolved by GC2000's resolve engine: "
-     "Vivante draws in immediate mode, the samples cost memory traffic); otherwise the pass after the frame", 0, 256,
+     "Vivante draws in immediate mode, the samples cost memory traffic; Mesa's etnaviv offers one only with "
+     "ETNA_MESA_DEBUG=msaa); otherwise the pass after the frame", 0, 256,
      "Vivante GC400-GC2000"},
     {"adreno3xx", "Adreno 306/320 (Snapdragon 410/600: Qualcomm's driver, Mesa freedreno)", 8192, 8192, 8192, 8192,
      4096, 4096, 16, 16, 16, 1, 1,
      "Mesa freedreno_screen.c for a3xx as FD307 (Adreno 306) and FD320 report under the drm-shim: 16 varyings, 16 "
      "samplers in both stages, 8K textures, fp32 shaders (ir3 lowers mediump to 16-bit registers only from a5xx)",
-     "4x multisampling in the EGL config where the driver offers one (resolved in Adreno's on-chip GMEM); otherwise "
-     "the pass after the frame", 0, 0, "Adreno 3xx"},
+     "4x multisampling in the EGL config where the driver offers one (resolved in Adreno's on-chip GMEM; Mesa's "
+     "freedreno offers none on a3xx); otherwise the pass after the frame", 0, 0, "Adreno 3xx"},
 };
 const int jd_profile_count = (int)(sizeof jd_profiles / sizeof jd_profiles[0]);
 
