@@ -70,10 +70,11 @@ void jd_profile_apply(const jd_profile *p, jd_gl_caps *c)
     c->ext_texture_float = 0;
     c->ext_packed_depth_stencil = 0;
     c->ext_standard_derivatives = 0;
-    /* Mali-400/450's drivers, ARM's and Mesa's lima (lima_screen.c:
-     * PIPE_CAP_SURFACE_SAMPLE_COUNT, 4 samples), draw a texture with 4x
-     * samples in the tile buffer; the other profiles' GPUs promise no such
-     * thing (Mesa's vc4, etnaviv and freedreno before a6xx lack it). */
+    /* Mali-400/450 under Mesa's lima (lima_screen.c:
+     * PIPE_CAP_SURFACE_SAMPLE_COUNT, 4 samples) draws a texture with 4x
+     * samples in the tile buffer (ARM's own driver: where it lists the
+     * extension; not looked at here); the other profiles' GPUs promise no
+     * such thing (Mesa's vc4, etnaviv and freedreno before a6xx lack it). */
     if (strcmp(p->name, "mali400") || c->max_samples < 4) {
         c->ext_multisampled_render_to_texture = 0;
         c->max_samples = 0;

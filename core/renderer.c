@@ -241,7 +241,7 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
      * would see only the enlarging pass's quad, and the edges be as drawn at
      * the smaller size. Where the GPU draws a texture with samples in its
      * tile buffer (EXT_multisampled_render_to_texture: Mesa's lima and
-     * panfrost, ARM's drivers), the picture is drawn so, at the target's
+     * panfrost, any driver that lists it), the picture is drawn so, at the target's
      * count: the samples never leave the chip, and each tile is resolved as
      * it is written out, as the target's own are. */
     if (d->antialias == JD_AA_AUTO && samples > 1 && r->may_scale && d->get_proc &&
