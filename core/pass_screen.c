@@ -406,7 +406,8 @@ void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f)
     const target *src = &r->scene;
     if (r->post_aa && scaled) {
         /* The enlarging below reads its box's texels and their bilinear
-         * neighbours: two texels more here than the box it fills. */
+         * neighbours: its box (two pixels round the object, a texel here)
+         * and a texel more lie inside this one's three. */
         jdr_count_target(r, "antialias-scaled", r->iw, r->ih);
         glBindFramebuffer(GL_FRAMEBUFFER, r->aa_mid.fbo);
         glViewport(0, 0, r->iw, r->ih);
