@@ -270,7 +270,8 @@ const char *jd_antialias_describe(const jd_renderer *r)
     jd_renderer_get_info(r, &info);
     int samples = info.target_samples;
     if (info.post_antialias)
-        snprintf(line, sizeof line, "anti-aliasing: a pass after the frame (the target has no multisampling)");
+        snprintf(line, sizeof line, "anti-aliasing: a pass after the frame (the target has no multisampling)%s",
+                 info.antialias_edges_only ? ", on the edges its test marks" : "");
     else if (samples > 1 && info.tier && info.picture_samples > 1)
         snprintf(line, sizeof line, "anti-aliasing: %dx multisampling in the picture drawn at %dx%d "
                  "(EXT_multisampled_render_to_texture), then enlarged", info.picture_samples, info.render_width,

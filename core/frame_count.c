@@ -140,9 +140,58 @@ static double shaded_vertices(const jd_mesh *m, int n)
     return misses;
 }
 
+/* The pixels the full pass after the frame runs on where its test marks
+ * the rest first (pass_screen.c, smooth_box): antialias.frag's test, made
+ * here on the frame's picture, in `scene` after a frame drawn for it (a
+ * counting frame's targets hold counts, not the picture). Rows are read
+ * in strips with a row above and below, and a neighbour past the picture's
+ * edge is taken as its edge pixel. */
+static double edge_pixels(jd_renderer *r)
+{
+    enum { CAP = 16384 }; /* pixels a strip */
+    static float luma[CAP]; /* not reentrant, as GL is not: one renderer counts at a time */
+    uint8_t rows[4 * CAP];
+    int w = r->scene.w, h = r->scene.h, per = CAP / (w > 0 ? w : 1);
+    if (w < 1 || h < 1 || per < 3) return -1;
+    glBindFramebuffer(GL_FRAMEBUFFER, r->scene.fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    double n = 0;
+    for (int y0 = 0; y0 < h; y0 += per - 2) {
+        int top = y0 > 0 ? y0 - 1 : 0, end = y0 + per - 1 < h ? y0 + per - 1 : h; /* rows [top, end) read */
+        glReadPixels(0, top, w, end - top, GL_RGBA, GL_UNSIGNED_BYTE, rows);
+        for (int i = 0; i < w * (end - top); i++)
+            luma[i] = (0.299f * rows[4 * i] + 0.587f * rows[4 * i + 1] + 0.114f * rows[4 * i + 2]) / 255.0f;
+        int last = y0 + per - 2 < h ? y0 + per - 2 : h;
+        for (int y = y0; y < last; y++) {
+            int up = (y + 1 < h ? y + 1 : y) - top, here = y - top, down = (y > 0 ? y - 1 : y) - top;
+            for (int x = 0; x < w; x++) {
+                int l = x > 0 ? x - 1 : x, rr = x + 1 < w ? x + 1 : x;
+                float v[5] = {luma[here * w + x], luma[up * w + l], luma[up * w + rr], luma[down * w + l],
+                              luma[down * w + rr]};
+                float lo = v[0], hi = v[0];
+                for (int k = 1; k < 5; k++) {
+                    lo = v[k] < lo ? v[k] : lo;
+                    hi = v[k] > hi ? v[k] : hi;
+                }
+                n += !(hi - lo < 0.05f);
+            }
+        }
+        if (last >= h) break;
+    }
+    return n;
+}
+
 jd_result jd_renderer_count(jd_renderer *r, const jd_scene *s, int vertex_cache, jd_frame_count *out, jd_error *err)
 {
     memset(out, 0, sizeof *out);
+    /* The pass after the frame shades its edges only where it marks the
+     * rest first: they are counted on the frame's own picture. */
+    r->count_edges = -1;
+    if (r->post_aa && r->aa_mark_prog) {
+        jd_result res = jd_renderer_frame(r, s, NULL, err);
+        if (res) return res;
+        r->count_edges = edge_pixels(r);
+    }
     if (!r->count_prog) {
         static const char *const attribs[] = {"a_position", NULL};
         jd_result res = jd_program_build("shaders_es2/count.vert", "shaders_es2/count.frag", "#define JD_PACK_HIGHP 0\n",
@@ -161,6 +210,7 @@ jd_result jd_renderer_count(jd_renderer *r, const jd_scene *s, int vertex_cache,
     jd_result res = jd_renderer_frame(r, s, NULL, err);
     counted_close(r);
     r->count = NULL;
+    r->count_edges = -1;
     /* The targets hold counts: the next frame draws every pass again. */
     r->light_key_valid = r->view_key_valid = 0;
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);

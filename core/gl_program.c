@@ -45,7 +45,7 @@ void jd_program_label(const char *vs, const char *fs, const char *defines, char 
         {"JD_A0_ONLY", "a0"}, {"JD_WIDE_ONLY", "wide"}, {"JD_VERTEX_DIFFUSION", "vertex-diffusion"},
         {"JD_VERTEX_THICKNESS", "vertex-thickness"}, {"JD_FIRST", "first"}, {"JD_BOX", "box"}, {"JD_TRIPS", "unrolled"}, {"JD_COMBINE", "combine"},
         {"JD_PACK_HIGHP", "highp"}, {"JD_ALBEDO", "colour"}, {"JD_ALBEDO_MAP", "texture"},
-        {"JD_ALBEDO_PARTIAL", "partial"}, {"JD_TWO_SIDED", "two-sided"}};
+        {"JD_ALBEDO_PARTIAL", "partial"}, {"JD_TWO_SIDED", "two-sided"}, {"JD_AA_MARK", "mark"}};
     for (size_t i = 0; i < sizeof tags / sizeof tags[0]; i++) tag(out, cap, defines, tags[i][0], tags[i][1]);
     size_t n = strlen(out);
     if (out[n - 1] == '[') out[n - 1] = 0;

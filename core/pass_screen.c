@@ -371,9 +371,10 @@ static int object_box(jd_renderer *r, const jd_mat4 *mvp, int w, int h, int pad,
 }
 
 /* One full-target quad of `prog` reading `src` (its used part) into the
- * bound framebuffer, inside the scissor box `box`, counted as its area. */
+ * bound framebuffer, inside the scissor box `box`, counted as `fragments`
+ * (< 0: its area). */
 static void filter_quad(jd_renderer *r, GLuint prog, GLint src_loc, GLint scale_loc, GLint texel_loc, const target *src,
-                        const int box[4])
+                        const int box[4], double fragments)
 {
     glScissor(box[0], box[1], box[2] - box[0], box[3] - box[1]);
     glUseProgram(prog);
@@ -383,10 +384,39 @@ static void filter_quad(jd_renderer *r, GLuint prog, GLint src_loc, GLint scale_
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, src->tex);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    double area = (double)(box[2] - box[0]) * (box[3] - box[1]);
-    jdr_counted_quad(r, area, 4, 2);
+    double n = fragments >= 0 ? fragments : (double)(box[2] - box[0]) * (box[3] - box[1]);
+    jdr_counted_quad(r, n, 4, 2);
     jd_pass_count *p = jdr_counted(r);
-    if (p) p->bytes_read += area * 4.0 * ((double)src->w / p->width) * ((double)src->h / p->height);
+    if (p) p->bytes_read += n * 4.0 * ((double)src->w / p->width) * ((double)src->h / p->height);
+}
+
+/* The pass after the frame over `box` of the bound framebuffer, reading
+ * `src`. Where that framebuffer has a depth buffer (`depth`: cleared to
+ * 1 with the colour), the pass's own test runs first and alone
+ * (antialias.frag with JD_AA_MARK: 27 of the whole pass's 62 instructions
+ * on the Vivante GC2000, 78 of 160 on the Adreno 306, by the compiler
+ * table): it copies a flat pixel and writes its depth, and discards an
+ * edge pixel. The whole pass then runs under the depth test, which the GPU
+ * makes before the fragment shader (early Z: Mesa's etnaviv and freedreno
+ * a3xx allow it for a program that neither discards nor writes its depth),
+ * so it shades the edges only: at the close-up of the frame-cost table,
+ * 17,243 of the box's 491,130 pixels at 960x540. The picture is the one
+ * pass's, pixel for pixel: a pixel the mark copies is one the whole pass
+ * leaves as it was (tests/test_antialias.c). */
+static void smooth_box(jd_renderer *r, const target *src, const int box[4], int depth)
+{
+    if (!depth || !r->aa_mark_prog) {
+        filter_quad(r, r->aa_prog, r->aa_src, r->aa_scale, r->aa_texel, src, box, -1);
+        return;
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    filter_quad(r, r->aa_mark_prog, r->aa_mark_src, r->aa_mark_scale, r->aa_mark_texel, src, box, -1);
+    glDepthFunc(GL_LESS); /* the quad's depth (0.5) passes where the clear's 1 is left */
+    glDepthMask(GL_FALSE);
+    filter_quad(r, r->aa_prog, r->aa_src, r->aa_scale, r->aa_texel, src, box, r->count ? r->count_edges : -1);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_DEPTH_TEST);
 }
 
 /* The frame from `scene` into the platform's target, its edges smoothed,
@@ -396,10 +426,14 @@ static void filter_quad(jd_renderer *r, GLuint prog, GLint src_loc, GLint scale_
  * is smoothed at its own size first, into `aa_mid`, and that enlarged: the
  * pass after the frame costs its instructions per pixel it filters, and at
  * 960x540 for 1920x1080 that is a quarter of the pixels (Vivante GC2000,
- * 62 instructions: 15.2 ms of the 1080p frame against 3.8). */
+ * 62 instructions: 15.2 ms of the 1080p frame against 3.8, before the pass
+ * shaded only its edges). */
 void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f)
 {
     int scaled = r->iw != r->d.width || r->ih != r->d.height, box[4];
+    float bg[3];
+    for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f));
+    glClearColor(bg[0], bg[1], bg[2], 1);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     jdr_bind_quad(r);
@@ -411,8 +445,11 @@ void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f)
         jdr_count_target(r, "antialias-scaled", r->iw, r->ih);
         glBindFramebuffer(GL_FRAMEBUFFER, r->aa_mid.fbo);
         glViewport(0, 0, r->iw, r->ih);
-        if (object_box(r, &f->mvp, r->iw, r->ih, 3, box))
-            filter_quad(r, r->aa_prog, r->aa_src, r->aa_scale, r->aa_texel, &r->scene, box);
+        /* Cleared whole, as a tiler wants a target it draws (else it
+         * loads the last frame's tiles), and for the mark in the depth. */
+        glScissor(0, 0, r->iw, r->ih);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        if (object_box(r, &f->mvp, r->iw, r->ih, 3, box)) smooth_box(r, &r->scene, box, 1);
         src = &r->aa_mid;
     }
     int smooth_here = r->post_aa && !scaled;
@@ -420,15 +457,12 @@ void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f)
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);
     glScissor(0, 0, r->d.width, r->d.height);
-    float bg[3];
-    for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f));
-    glClearColor(bg[0], bg[1], bg[2], 1);
-    glClear(GL_COLOR_BUFFER_BIT);
+    glClear(GL_COLOR_BUFFER_BIT | (r->target_depth ? GL_DEPTH_BUFFER_BIT : 0));
     if (!object_box(r, &f->mvp, r->d.width, r->d.height, 2, box)) return;
     /* The quad spans the target; its texture coordinates the used part of
      * the source, whatever its size: drawn smaller, it is enlarged here. */
     if (smooth_here)
-        filter_quad(r, r->aa_prog, r->aa_src, r->aa_scale, r->aa_texel, src, box);
+        smooth_box(r, src, box, r->target_depth);
     else
-        filter_quad(r, r->up_prog, r->up_src, r->up_scale, -1, src, box);
+        filter_quad(r, r->up_prog, r->up_src, r->up_scale, -1, src, box, -1);
 }

@@ -376,6 +376,17 @@ static jd_result build_antialias(jd_renderer *r, jd_error *err)
     r->aa_src = glGetUniformLocation(r->aa_prog, "u_src");
     r->aa_texel = glGetUniformLocation(r->aa_prog, "u_texel");
     r->aa_scale = glGetUniformLocation(r->aa_prog, "u_uv_scale");
+    /* Its test alone, which marks the flat pixels in the depth buffer so
+     * that the pass runs on the edges only (jdr_pass_final): where a frame
+     * goes through `aa_mid` (its depth is the frame's) or the target has
+     * a depth buffer of its own. */
+    if (!r->may_scale && !r->target_depth) return JD_OK;
+    res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/antialias.frag", "#define JD_PACK_HIGHP 0\n#define JD_AA_MARK 1\n",
+                quad_attribs, &r->aa_mark_prog, err);
+    if (res) return res;
+    r->aa_mark_src = glGetUniformLocation(r->aa_mark_prog, "u_src");
+    r->aa_mark_texel = glGetUniformLocation(r->aa_mark_prog, "u_texel");
+    r->aa_mark_scale = glGetUniformLocation(r->aa_mark_prog, "u_uv_scale");
     return JD_OK;
 }
 
@@ -406,7 +417,7 @@ static int group_programs(jd_renderer *r, int g, GLuint **out)
         out[n++] = &r->shade[JD_MODE_FULL].id; out[n++] = &r->wide_prog.id; out[n++] = &r->diff_first.id;
         out[n++] = &r->diff_next.id; out[n++] = &r->soft_prog;
         break;
-    default: out[n++] = &r->aa_prog; out[n++] = &r->up_prog; break;
+    default: out[n++] = &r->aa_prog; out[n++] = &r->up_prog; out[n++] = &r->aa_mark_prog; break;
     }
     return n;
 }

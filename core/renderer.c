@@ -117,6 +117,9 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     glBindFramebuffer(GL_FRAMEBUFFER, d->target_fbo);
     if (samples <= 0) glGetIntegerv(GL_SAMPLES, &samples);
     r->target_samples = samples;
+    GLint depth_bits = 0;
+    glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
+    r->target_depth = depth_bits > 0;
     r->post_aa = d->antialias == JD_AA_POST || (d->antialias == JD_AA_AUTO && samples <= 1);
     if (d->render_scale != 0.0f && !(d->render_scale >= 0.25f && d->render_scale <= 1.0f))
         return jd_fail(err, JD_ERR_ARG, "render scale %g must be 0 (the device's tier) or 0.25..1", (double)d->render_scale);
@@ -293,7 +296,8 @@ void jd_renderer_destroy(jd_renderer *r)
     for (int m = 0; m < JD_MODE_COUNT; m++) glDeleteProgram(r->shade[m].id);
     glDeleteProgram(r->wide_prog.id);
     GLuint progs[] = {r->count_prog, r->up_prog, r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_mid_prog, r->reduce_faces_prog,
-                      r->reduce_final_prog, r->irr_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id, r->aa_prog};
+                      r->reduce_final_prog, r->irr_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id, r->aa_prog,
+                      r->aa_mark_prog};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
     memset(r, 0, sizeof *r);
 }
@@ -333,6 +337,14 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
     if (!res && r->aa_mid.fbo)
         res = jdr_fit_target(r, &r->aa_mid, scaled ? width : 0, scaled ? height : 0, 1,
                              "anti-aliased frame before enlarging", err);
+    if (!res && r->aa_mid.fbo) { /* the frame's depth, the same size, while aa_mid is used */
+        glBindFramebuffer(GL_FRAMEBUFFER, r->aa_mid.fbo);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, scaled ? r->scene.depth : 0);
+        GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (st != GL_FRAMEBUFFER_COMPLETE)
+            res = jd_fail(err, JD_ERR_GL, "anti-aliased frame before enlarging with the frame's depth: framebuffer "
+                          "%dx%d incomplete (0x%x)", r->aa_mid.tw, r->aa_mid.th, st);
+    }
     if (!res && r->wide.fbo) res = jdr_fit_target(r, &r->wide, (width + 1) / 2, (height + 1) / 2, 1, "full's levels", err);
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     if (res) return res;
@@ -361,6 +373,8 @@ void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
     info->gpu_timer = r->tq.ok;
     info->target_samples = r->target_samples;
     info->post_antialias = r->post_aa;
+    info->antialias_edges_only = r->post_aa && r->aa_mark_prog &&
+                                 (r->iw != r->d.width || r->ih != r->d.height || r->target_depth);
     info->picture_samples = jdr_via_scene(r) ? r->scene.samples : r->target_samples;
     info->samples_note = r->ms_note[0] ? r->ms_note : NULL;
     info->render_width = r->iw;

@@ -23,7 +23,10 @@ typedef enum jd_precision { JD_PRECISION_AUTO = 0, JD_PRECISION_HIGHP, JD_PRECIS
  * config with samples, free on tile-based GPUs; a picture drawn smaller for
  * it is drawn with the target's samples where the GPU has
  * EXT_multisampled_render_to_texture) and otherwise smooths them in a pass
- * after the frame (one full-size render target more). */
+ * after the frame (one full-size render target more). Where the target has
+ * a depth buffer, or the picture is drawn smaller, the pass's own test
+ * first marks the flat pixels in the depth buffer, and the pass then shades
+ * only the edges (a few percent of the pixels), with the same picture. */
 typedef enum jd_antialias { JD_AA_AUTO = 0, JD_AA_OFF, JD_AA_POST } jd_antialias;
 /* The start-up check that every program draws (core/program_probe.c): two
  * small read-backs, and every program's shaders compiled at once rather
@@ -146,7 +149,8 @@ jd_result jd_renderer_create(const jd_renderer_desc *desc, jd_arena *a, jd_rende
  * pointers and enables), the 2D and cube map textures bound on units 0-6
  * (unit 0 active at the end), depth test and face culling (on or off as
  * its last pass needed), the scissor test (on), dither (off) and the clear
- * colour. It expects, and does not set, the rest at GL's defaults:
+ * colour; the target's depth buffer holds the frame's depths, or where the
+ * pass after the frame runs, its marks. It expects, and does not set, the rest at GL's defaults:
  * blending off, depth function GL_LESS, colour and depth writes on, front
  * faces counter-clockwise, back faces culled, stencil test off. */
 jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *stats,
@@ -157,8 +161,10 @@ jd_result jd_renderer_frame(jd_renderer *r, const jd_scene *s, jd_frame_stats *s
  * made again by a counting program and the target read back), vertices
  * shaded (vertex_cache 0: each draw's index range; N: a FIFO of N
  * entries), triangles, and bytes written and read. Not a frame to show: it
- * reads back and builds its counting program the first time; bench calls
- * it outside the timed frames. */
+ * reads back and builds its counting program the first time, and where
+ * the pass after the frame shades only its edges it draws a frame first and
+ * reads its picture back to count them; bench calls it outside the timed
+ * frames. */
 jd_result jd_renderer_count(jd_renderer *r, const jd_scene *s, int vertex_cache, jd_frame_count *out,
                             jd_error *err);
 /* Deletes the GL objects (the context must be current); the arena's bytes
@@ -186,6 +192,10 @@ typedef struct jd_renderer_info {
     int gpu_timer;            /* GL_EXT_disjoint_timer_query: per-pass GPU times with timing on */
     int target_samples;       /* samples per pixel of the target (desc.target_samples, or GL_SAMPLES) */
     int post_antialias;       /* the anti-aliasing pass runs after each frame */
+    /* At this size it shades only the pixels its test finds on an edge,
+     * having marked the others in a depth buffer first (the target's, or
+     * the frame's where it is drawn smaller): a few percent of them */
+    int antialias_edges_only;
     /* Samples per pixel the picture is drawn with: the target's, or where it
      * is drawn smaller and enlarged, its own (EXT_multisampled_render_to_texture;
      * 0 or 1: one) */

@@ -114,6 +114,7 @@ struct jd_renderer {
     int vertex_diffusion; /* the full mode's levels summed in the vertex stage */
     int target_samples;   /* samples of the target: desc.target_samples, or GL_SAMPLES */
     int post_aa;          /* frames go to `scene`, then through the anti-aliasing pass */
+    int target_depth;     /* the target has a depth buffer: the pass after the frame can mark its flat pixels there */
     int may_scale;        /* render_scale may be under 1 at some size: `scene` and the upscale pass exist */
     int iw, ih;           /* the picture's passes' size: width x height, or less (render_scale) */
     char tier[200];       /* what the tier draws at, for jd_renderer_info */
@@ -165,6 +166,9 @@ struct jd_renderer {
     GLint soft_src, soft_step, soft_c, soft_scale;
     GLuint aa_prog, up_prog;
     GLint aa_src, aa_texel, aa_scale, up_src, up_scale;
+    GLuint aa_mark_prog; /* the pass after the frame's test alone (JD_AA_MARK): flat pixels copied, edges left */
+    GLint aa_mark_src, aa_mark_texel, aa_mark_scale;
+    double count_edges;  /* jd_renderer_count: the pixels the full pass after the frame runs on (< 0: its whole box) */
     GLint depth_mvp, depth_light_dir, depth_fresnel;
     GLint cap_mvp, cap_light_tex, cap_light_dir, cap_bias, cap_depth, cap_light_color;
     GLint proj_atlas, proj_texel, rm_src, rm_texel, rf_src, rf_texel, rl_src, rl_texel;
@@ -179,7 +183,9 @@ struct jd_renderer {
     target soft_tmp, soft;
     target scene;         /* the frame before anti-aliasing or enlarging (post_aa, or drawn smaller) */
     /* post_aa with the picture drawn smaller: `scene` anti-aliased at its
-     * own size, which the enlarging then reads (one texel where unused). */
+     * own size, which the enlarging then reads (one texel where unused).
+     * Its depth is `scene`'s renderbuffer, attached while it is used: the
+     * frame is drawn by then, and the pass marks its flat pixels there. */
     target aa_mid;
     target wide;          /* full's levels summed at a lower resolution (without vertex diffusion) */
     /* The object's extent on screen in NDC (x0, y0, x1, y1) for the pass

@@ -4,6 +4,12 @@
 // edge and which way it runs; the colour is then averaged along the edge
 // (two or four taps), and the wider average is kept only if its luma stays
 // within the neighbourhood's range (else it crossed another edge).
+// JD_AA_MARK: the same test alone, drawn first over the whole box: a flat
+// pixel is copied and writes the depth buffer, an edge pixel is discarded,
+// and the full pass then runs under the depth test on the edges only (a
+// few percent of the box: pass_screen.c, jdr_pass_final). The test is this
+// file's in both, so that a pixel the mark copies is one the full pass
+// would have left as it was.
 uniform sampler2D u_src;    // the frame, display-encoded, bilinear
 uniform vec2 u_texel;       // 1 / the source texture's size
 varying vec2 v_uv;
@@ -21,6 +27,10 @@ void main()
     float lo = min(lm, min(min(nw, ne), min(sw, se)));
     float hi = max(lm, max(max(nw, ne), max(sw, se)));
     // Flat regions (most of the picture) stay exactly as they are.
+#ifdef JD_AA_MARK
+    if (!(hi - lo < 0.05)) discard;
+    gl_FragColor = vec4(m, 1.0);
+#else
     if (hi - lo < 0.05) {
         gl_FragColor = vec4(m, 1.0);
         return;
@@ -33,4 +43,5 @@ void main()
     vec3 b = 0.5 * a + 0.25 * (texture2D(u_src, v_uv - dir * 0.5).rgb + texture2D(u_src, v_uv + dir * 0.5).rgb);
     float lb = luma(b);
     gl_FragColor = vec4(lb < lo || lb > hi ? a : b, 1.0);
+#endif
 }

@@ -1,10 +1,17 @@
 /* Anti-aliasing: without multisampling, the pass after the frame must soften
  * the silhouette's staircase (fewer hard steps between neighbours) and leave
- * every pixel away from an edge as it was. The default asset, in the tree. */
+ * every pixel away from an edge as it was. Where the target has a depth
+ * buffer the pass's test marks the flat pixels first and the pass shades
+ * the rest only: the picture must be the one pass's into a target without
+ * depth, byte for byte, and the count (jd_renderer_count) a few percent of
+ * the box. The default asset, in the tree. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
+#include "frame_cost.h"
+#include "gl.h"
 #include "gl_fixture.h"
 #include "mesh_load.h"
 #include "platform.h"
@@ -12,7 +19,33 @@
 
 enum { W = 256, H = 256 };
 static unsigned char mem[32 << 20];
-static uint8_t pic[2][W * H * 4];
+static uint8_t pic[3][W * H * 4];
+static jd_frame_count count;
+
+/* A colour-only framebuffer of W x H (no depth): the pass after the frame
+ * runs whole there. */
+static GLuint depthless_target(void)
+{
+    GLuint tex, fbo;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? fbo : 0;
+}
+
+/* The fragments counted for the program labelled exactly `label`. */
+static double counted(const char *label)
+{
+    double n = 0;
+    for (int i = 0; i < count.num_passes; i++)
+        if (!strcmp(count.pass[i].program, label)) n += count.pass[i].fragments;
+    return n;
+}
 
 int main(int argc, char **argv)
 {
@@ -29,11 +62,14 @@ int main(int argc, char **argv)
     jd_mesh mesh;
     if (jd_test_fixture(path, mem, sizeof mem, &caps, &a, &mesh)) return 1;
     size_t mark = jd_arena_mark(&a);
-    const jd_antialias modes[2] = {JD_AA_OFF, JD_AA_POST};
-    for (int k = 0; k < 2; k++) {
+    const jd_antialias modes[3] = {JD_AA_OFF, JD_AA_POST, JD_AA_POST};
+    GLuint plain = depthless_target();
+    CHECK(plain != 0, "a framebuffer without depth");
+    for (int k = 0; k < 3; k++) {
         jd_arena_reset(&a, mark);
-        jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = jd_platform_framebuffer(P), .width = W,
-                              .height = H, .antialias = modes[k]};
+        GLuint fbo = k == 2 ? plain : jd_platform_framebuffer(P);
+        jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = fbo, .width = W, .height = H,
+                              .antialias = modes[k]};
         jd_renderer *r = NULL;
         jd_scene s;
         jd_scene_defaults(&s, NULL);
@@ -41,9 +77,38 @@ int main(int argc, char **argv)
         if (!r) return 1;
         jd_renderer_info info;
         jd_renderer_get_info(r, &info);
-        CHECK(info.post_antialias == (k == 1), "the pass runs only when asked for");
-        CHECK(jd_renderer_frame(r, &s, NULL, &err) == JD_OK && jd_platform_read_rgba(P, pic[k], &err) == JD_OK, "%s",
-              err.msg);
+        CHECK(info.post_antialias == (k > 0), "the pass runs only when asked for");
+        CHECK(info.antialias_edges_only == (k == 1), "%s", k == 1 ? "the headless target's depth marks the flat pixels"
+                                                                  : "no depth buffer, no mark");
+        CHECK(jd_renderer_frame(r, &s, NULL, &err) == JD_OK, "%s", err.msg);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo); /* rows bottom-up, as both targets hold them */
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, pic[k]);
+        if (k == 1) {
+            CHECK(jd_renderer_count(r, &s, 0, &count, &err) == JD_OK, "%s", err.msg);
+            double marked = counted("quad.vert+antialias.frag[mark]"), edges = counted("quad.vert+antialias.frag");
+            printf("the pass after the frame: its test over %.0f pixels, the whole pass over %.0f of them\n", marked,
+                   edges);
+            CHECK(marked > 0 && edges > 10 && edges < 0.35 * marked, "the whole pass shades the edges only");
+        }
+        jd_renderer_destroy(r);
+    }
+    int differ = 0;
+    for (size_t i = 0; i < sizeof pic[1]; i++) differ += pic[1][i] != pic[2][i];
+    printf("the pass on the edges its test marks against the whole pass: %d bytes differ\n", differ);
+    CHECK(differ == 0, "the edges-only pass draws the whole pass's picture");
+    /* Drawn smaller, the frame's depth serves the mark, with or without one in the target. */
+    for (int k = 0; k < 2; k++) {
+        jd_arena_reset(&a, mark);
+        jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = k ? plain : jd_platform_framebuffer(P),
+                              .width = W, .height = H, .antialias = JD_AA_POST, .render_scale = 0.5f};
+        jd_renderer *r = NULL;
+        CHECK(jd_renderer_create(&d, &a, &r, &err) == JD_OK, "%s", err.msg);
+        if (!r) return 1;
+        jd_renderer_info info;
+        jd_renderer_get_info(r, &info);
+        CHECK(info.antialias_edges_only, "drawn at %dx%d, the frame's depth marks the flat pixels", info.render_width,
+              info.render_height);
         jd_renderer_destroy(r);
     }
     /* Hard steps: neighbours (right, below) whose luma differs by 64 or more. */

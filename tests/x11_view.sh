@@ -25,6 +25,14 @@ grep anti-aliasing "$out/view_aa.txt"
 env DISPLAY=":$d" "$jade" view --frames 1 --size 1280x720 --profile mali400 --mode none > "$out/view_tier.txt" 2>&1
 check grep -Eq "anti-aliasing: (none on the picture drawn at 960x540 \(the target's [0-9]+x multisampling sees only the enlarging[^)]*\)|4x multisampling in the picture drawn at 960x540|a pass after the frame)" "$out/view_tier.txt"
 grep anti-aliasing "$out/view_tier.txt"
+# The pass after the frame into the window, which marks its flat pixels in
+# the window's own depth buffer first: the headless pass's picture.
+env DISPLAY=":$d" "$jade" view --frames 3 --screenshot "$out/view_post.png" --size 200x160 --cam-azimuth 30 \
+    --antialias post > "$out/view_post.txt" 2>&1
+check grep -q "anti-aliasing: a pass after the frame (the target has no multisampling), on the edges its test marks" \
+    "$out/view_post.txt"
+check "$jade" render --out "$out/post_headless.png" --size 200x160 --cam-azimuth 30 --antialias post
+check "$imgcmp" "$out/view_post.png" "$out/post_headless.png" --max-rmse 0.01 --max-bad-frac 0 --bad-threshold 2
 check "$jade" render --out "$out/view_headless.png" $args
 check "$imgcmp" "$out/view.png" "$out/view_headless.png" --max-rmse 1.0 --max-bad-frac 0.001 --bad-threshold 16
 check env DISPLAY=":$d" "$jade" view --frames 5 --screenshot "$out/view_mali.png" --profile mali400 $args
