@@ -393,8 +393,8 @@ static void filter_quad(jd_renderer *r, GLuint prog, GLint src_loc, GLint scale_
 /* The pass after the frame over `box` of the bound framebuffer, reading
  * `src`. Where that framebuffer has a depth buffer (`depth`: cleared to
  * 1 with the colour), the pass's own test runs first and alone
- * (antialias.frag with JD_AA_MARK: 27 of the whole pass's 62 instructions
- * on the Vivante GC2000, 78 of 160 on the Adreno 306, by the compiler
+ * (antialias.frag with JD_AA_MARK: 24 of the whole pass's 59 instructions
+ * on the Vivante GC2000, 72 of 156 on the Adreno 306, by the compiler
  * table): it copies a flat pixel and writes its depth, and discards an
  * edge pixel. The whole pass then runs under the depth test, which the GPU
  * makes before the fragment shader (early Z: Mesa's etnaviv and freedreno

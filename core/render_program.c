@@ -370,8 +370,8 @@ static jd_result build_antialias(jd_renderer *r, jd_error *err)
         r->up_scale = glGetUniformLocation(r->up_prog, "u_uv_scale");
     }
     if (!r->post_aa) return JD_OK;
-    jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/antialias.frag", "#define JD_PACK_HIGHP 0\n",
-                          quad_attribs, &r->aa_prog, err);
+    jd_result res = build(r, 3, "shaders_es2/quad.vert", "shaders_es2/antialias.frag",
+                          "#define JD_PACK_HIGHP 0\n#define JD_DIAGONALS 1\n", quad_attribs, &r->aa_prog, err);
     if (res) return res;
     r->aa_src = glGetUniformLocation(r->aa_prog, "u_src");
     r->aa_texel = glGetUniformLocation(r->aa_prog, "u_texel");
@@ -381,8 +381,8 @@ static jd_result build_antialias(jd_renderer *r, jd_error *err)
      * goes through `aa_mid` (its depth is the frame's) or the target has
      * a depth buffer of its own. */
     if (!r->may_scale && !r->target_depth) return JD_OK;
-    res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/antialias.frag", "#define JD_PACK_HIGHP 0\n#define JD_AA_MARK 1\n",
-                quad_attribs, &r->aa_mark_prog, err);
+    res = build(r, 3, "shaders_es2/quad.vert", "shaders_es2/antialias.frag",
+                "#define JD_PACK_HIGHP 0\n#define JD_DIAGONALS 1\n#define JD_AA_MARK 1\n", quad_attribs, &r->aa_mark_prog, err);
     if (res) return res;
     r->aa_mark_src = glGetUniformLocation(r->aa_mark_prog, "u_src");
     r->aa_mark_texel = glGetUniformLocation(r->aa_mark_prog, "u_texel");

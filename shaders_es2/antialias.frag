@@ -13,16 +13,18 @@
 uniform sampler2D u_src;    // the frame, display-encoded, bilinear
 uniform vec2 u_texel;       // 1 / the source texture's size
 varying vec2 v_uv;
+varying vec4 v_diag0;       // the diagonal neighbours' coordinates (quad.vert, JD_DIAGONALS)
+varying vec4 v_diag1;
 
 float luma(vec3 c) { return dot(c, vec3(0.299, 0.587, 0.114)); }
 
 void main()
 {
     vec3 m = texture2D(u_src, v_uv).rgb;
-    float nw = luma(texture2D(u_src, v_uv + vec2(-1.0, -1.0) * u_texel).rgb);
-    float ne = luma(texture2D(u_src, v_uv + vec2(1.0, -1.0) * u_texel).rgb);
-    float sw = luma(texture2D(u_src, v_uv + vec2(-1.0, 1.0) * u_texel).rgb);
-    float se = luma(texture2D(u_src, v_uv + vec2(1.0, 1.0) * u_texel).rgb);
+    float nw = luma(texture2D(u_src, v_diag0.xy).rgb);
+    float ne = luma(texture2D(u_src, v_diag0.zw).rgb);
+    float sw = luma(texture2D(u_src, v_diag1.xy).rgb);
+    float se = luma(texture2D(u_src, v_diag1.zw).rgb);
     float lm = luma(m);
     float lo = min(lm, min(min(nw, ne), min(sw, se)));
     float hi = max(lm, max(max(nw, ne), max(sw, se)));

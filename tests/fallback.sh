@@ -44,7 +44,7 @@ falls_back "dual, spread blur rejected" dual "" "u_inv_2s2:reject" single "dual 
 # The anti-aliasing pass rejected: frames go without it. The pass asked
 # for: a target with multisampling (an NVIDIA GPU's) builds none by default.
 sab_opts="--antialias post"
-falls_back "anti-aliasing pass rejected" full "" "u_texel;:reject" full "anti-aliasing pass unavailable" --antialias off
+falls_back "anti-aliasing pass rejected" full "" "float luma(vec3:reject" full "anti-aliasing pass unavailable" --antialias off
 sab_opts=
 # The light depth every mode needs: nothing cheaper, one line and exit 1.
 if JD_SABOTAGE="v_depth:reject" LD_PRELOAD=$sabotage "$jade" render --size 64x64 --out "$tmp/x.png" >"$tmp/x.out" 2>"$tmp/x.err"; then
