@@ -255,6 +255,26 @@ if have 700 capture; then
     else bad "writeback capture: $(cat "$out/capture")"; fi
     restored capture
 fi
+# The same through the pass after the frame (no multisampled config asked
+# for), which marks its flat pixels in the display surface's own depth
+# buffer and then smooths the edges alone: the scan-out is jade's render
+# through the same pass, which marks them in the headless target's.
+if have 500 capture_post; then
+    post="--light-speed 0 --antialias post"
+    if kiosk capture_post 350 --display-mode 640x480 --decode-timeout-ms 60000 --frames 3 --atomic $post \
+        --screenshot "$out/scanout_post.png" &&
+        grep -q "^anti-aliasing: a pass after the frame (the target has no multisampling), on the edges its test marks" \
+            "$out/capture_post"; then
+        if ! bounded render_post 300 "$jade" render --size 640x480 --decode-timeout-ms 60000 --antialias post \
+            --out "$out/render_post.png"; then
+            bad "the guest's render through the pass: $(cat "$out/render_post")"
+        elif "$imgcmp" "$out/scanout_post.png" "$out/render_post.png" --max-rmse 0.5 --max-bad-frac 0.001 > "$out/pcmp" 2>&1 &&
+            "$imgcmp" --frame "$out/scanout_post.png" 0.3 >> "$out/pcmp" 2>&1; then
+            ok "the pass after the frame on KMS, its marks in the surface's depth: $(grep '^anti-aliasing' "$out/capture_post"); $(cat "$out/pcmp" | tr '\n' ' ')"
+        else bad "the scan-out through the pass differs from the render: $(cat "$out/pcmp")"; fi
+    else bad "writeback capture through the pass: $(cat "$out/capture_post")"; fi
+    restored capture_post
+fi
 # The display engine enlarging the picture: under the mali400 profile the
 # tier draws 1280x720 at 960x540, and with atomic modesetting (the default
 # where the driver has it) the kiosk asks the plane's scaler to enlarge it
