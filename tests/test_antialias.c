@@ -19,7 +19,7 @@
 
 enum { W = 256, H = 256 };
 static unsigned char mem[32 << 20];
-static uint8_t pic[3][W * H * 4];
+static uint8_t pic[3][W * H * 4], small[3][W * H * 4];
 static jd_frame_count count;
 
 /* A colour-only framebuffer of W x H (no depth): the pass after the frame
@@ -97,20 +97,45 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < sizeof pic[1]; i++) differ += pic[1][i] != pic[2][i];
     printf("the pass on the edges its test marks against the whole pass: %d bytes differ\n", differ);
     CHECK(differ == 0, "the edges-only pass draws the whole pass's picture");
-    /* Drawn smaller, the frame's depth serves the mark, with or without one in the target. */
-    for (int k = 0; k < 2; k++) {
+    /* Drawn smaller, the frame's depth serves the mark, with or without one
+     * in the target; and after a resize that takes other powers of two (the
+     * frame's depth attached again), the picture is a fresh renderer's. */
+    for (int k = 0; k < 3; k++) {
         jd_arena_reset(&a, mark);
-        jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = k ? plain : jd_platform_framebuffer(P),
-                              .width = W, .height = H, .antialias = JD_AA_POST, .render_scale = 0.5f};
+        jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = k == 1 ? plain : jd_platform_framebuffer(P),
+                              .width = k == 2 ? W / 2 : W, .height = H, .max_width = W, .max_height = H,
+                              .antialias = JD_AA_POST, .render_scale = 0.5f};
         jd_renderer *r = NULL;
+        jd_scene s;
+        jd_scene_defaults(&s, NULL);
         CHECK(jd_renderer_create(&d, &a, &r, &err) == JD_OK, "%s", err.msg);
         if (!r) return 1;
         jd_renderer_info info;
         jd_renderer_get_info(r, &info);
         CHECK(info.antialias_edges_only, "drawn at %dx%d, the frame's depth marks the flat pixels", info.render_width,
               info.render_height);
+        if (k != 1) {
+            GLuint fbo = jd_platform_framebuffer(P);
+            CHECK(jd_renderer_frame(r, &s, NULL, &err) == JD_OK, "%s", err.msg);
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            glReadPixels(0, 0, d.width, H, GL_RGBA, GL_UNSIGNED_BYTE, small[k == 2 ? 1 : 0]);
+        }
+        if (k == 0) { /* W x H (128 x 128 drawn) -> W/2 x H (64 x 128) -> W x H again */
+            GLuint fbo = jd_platform_framebuffer(P);
+            CHECK(jd_renderer_resize(r, W / 2, H, &err) == JD_OK && jd_renderer_frame(r, &s, NULL, &err) == JD_OK, "%s",
+                  err.msg);
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            glReadPixels(0, 0, W / 2, H, GL_RGBA, GL_UNSIGNED_BYTE, small[2]);
+            CHECK(jd_renderer_resize(r, W, H, &err) == JD_OK && jd_renderer_frame(r, &s, NULL, &err) == JD_OK, "%s",
+                  err.msg);
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, small[1]);
+            CHECK(!memcmp(small[0], small[1], (size_t)W * H * 4), "back at %dx%d after a resize: the same picture", W, H);
+        }
         jd_renderer_destroy(r);
     }
+    CHECK(!memcmp(small[1], small[2], (size_t)W / 2 * H * 4),
+          "resized to %dx%d: the picture of a renderer made at that size", W / 2, H);
     /* Hard steps: neighbours (right, below) whose luma differs by 64 or more. */
     int steps[2] = {0, 0}, flat = 0, flat_changed = 0;
     for (int y = 1; y < H - 1; y++)
