@@ -146,10 +146,11 @@ static double shaded_vertices(const jd_mesh *m, int n)
  * counting frame's targets hold counts, not the picture). Rows are read
  * in strips with a row above and below, and a neighbour past the picture's
  * edge is taken as its edge pixel. */
+static float luma_at(const uint8_t *p) { return (0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2]) / 255.0f; }
+
 static double edge_pixels(jd_renderer *r)
 {
     enum { CAP = 16384 }; /* pixels a strip */
-    static float luma[CAP]; /* not reentrant, as GL is not: one renderer counts at a time */
     uint8_t rows[4 * CAP];
     int w = r->scene.w, h = r->scene.h, per = CAP / (w > 0 ? w : 1);
     if (w < 1 || h < 1 || per < 3) return -1;
@@ -159,15 +160,15 @@ static double edge_pixels(jd_renderer *r)
     for (int y0 = 0; y0 < h; y0 += per - 2) {
         int top = y0 > 0 ? y0 - 1 : 0, end = y0 + per - 1 < h ? y0 + per - 1 : h; /* rows [top, end) read */
         glReadPixels(0, top, w, end - top, GL_RGBA, GL_UNSIGNED_BYTE, rows);
-        for (int i = 0; i < w * (end - top); i++)
-            luma[i] = (0.299f * rows[4 * i] + 0.587f * rows[4 * i + 1] + 0.114f * rows[4 * i + 2]) / 255.0f;
         int last = y0 + per - 2 < h ? y0 + per - 2 : h;
         for (int y = y0; y < last; y++) {
             int up = (y + 1 < h ? y + 1 : y) - top, here = y - top, down = (y > 0 ? y - 1 : y) - top;
             for (int x = 0; x < w; x++) {
                 int l = x > 0 ? x - 1 : x, rr = x + 1 < w ? x + 1 : x;
-                float v[5] = {luma[here * w + x], luma[up * w + l], luma[up * w + rr], luma[down * w + l],
-                              luma[down * w + rr]};
+                const uint8_t *row = rows + 4 * (size_t)here * w, *ru = rows + 4 * (size_t)up * w,
+                              *rd = rows + 4 * (size_t)down * w;
+                float v[5] = {luma_at(row + 4 * x), luma_at(ru + 4 * l), luma_at(ru + 4 * rr), luma_at(rd + 4 * l),
+                              luma_at(rd + 4 * rr)};
                 float lo = v[0], hi = v[0];
                 for (int k = 1; k < 5; k++) {
                     lo = v[k] < lo ? v[k] : lo;
@@ -187,7 +188,7 @@ jd_result jd_renderer_count(jd_renderer *r, const jd_scene *s, int vertex_cache,
     /* The pass after the frame shades its edges only where it marks the
      * rest first: they are counted on the frame's own picture. */
     r->count_edges = -1;
-    if (r->post_aa && r->aa_mark_prog) {
+    if (jdr_aa_marks(r)) {
         jd_result res = jd_renderer_frame(r, s, NULL, err);
         if (res) return res;
         r->count_edges = edge_pixels(r);

@@ -391,8 +391,8 @@ static void filter_quad(jd_renderer *r, GLuint prog, GLint src_loc, GLint scale_
 }
 
 /* The pass after the frame over `box` of the bound framebuffer, reading
- * `src`. Where that framebuffer has a depth buffer (`depth`: cleared to
- * 1 with the colour), the pass's own test runs first and alone
+ * `src`. Where that framebuffer has a depth buffer (jdr_aa_marks: cleared
+ * to 1 with the colour), the pass's own test runs first and alone
  * (antialias.frag with JD_AA_MARK: 24 of the whole pass's 59 instructions
  * on the Vivante GC2000, 72 of 156 on the Adreno 306, by the compiler
  * table): it copies a flat pixel and writes its depth, and discards an
@@ -403,9 +403,9 @@ static void filter_quad(jd_renderer *r, GLuint prog, GLint src_loc, GLint scale_
  * 17,243 of the box's 491,130 pixels at 960x540. The picture is the one
  * pass's, pixel for pixel: a pixel the mark copies is one the whole pass
  * leaves as it was (tests/test_antialias.c). */
-static void smooth_box(jd_renderer *r, const target *src, const int box[4], int depth)
+static void smooth_box(jd_renderer *r, const target *src, const int box[4])
 {
-    if (!depth || !r->aa_mark_prog) {
+    if (!jdr_aa_marks(r)) {
         filter_quad(r, r->aa_prog, r->aa_src, r->aa_scale, r->aa_texel, src, box, -1);
         return;
     }
@@ -449,7 +449,7 @@ void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f)
          * loads the last frame's tiles), and for the mark in the depth. */
         glScissor(0, 0, r->iw, r->ih);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        if (object_box(r, &f->mvp, r->iw, r->ih, 3, box)) smooth_box(r, &r->scene, box, 1);
+        if (object_box(r, &f->mvp, r->iw, r->ih, 3, box)) smooth_box(r, &r->scene, box);
         src = &r->aa_mid;
     }
     int smooth_here = r->post_aa && !scaled;
@@ -462,7 +462,7 @@ void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f)
     /* The quad spans the target; its texture coordinates the used part of
      * the source, whatever its size: drawn smaller, it is enlarged here. */
     if (smooth_here)
-        smooth_box(r, src, box, r->target_depth);
+        smooth_box(r, src, box);
     else
         filter_quad(r, r->up_prog, r->up_src, r->up_scale, -1, src, box, -1);
 }

@@ -373,8 +373,7 @@ void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
     info->gpu_timer = r->tq.ok;
     info->target_samples = r->target_samples;
     info->post_antialias = r->post_aa;
-    info->antialias_edges_only = r->post_aa && r->aa_mark_prog &&
-                                 (r->iw != r->d.width || r->ih != r->d.height || r->target_depth);
+    info->antialias_edges_only = jdr_aa_marks(r);
     info->picture_samples = jdr_via_scene(r) ? r->scene.samples : r->target_samples;
     info->samples_note = r->ms_note[0] ? r->ms_note : NULL;
     info->render_width = r->iw;

@@ -318,4 +318,12 @@ static inline int jdr_via_scene(const jd_renderer *r)
     return r->post_aa || r->iw != r->d.width || r->ih != r->d.height;
 }
 
+/* At this size the pass after the frame marks its flat pixels in a depth
+ * buffer first and shades the edges only: the frame's depth where it is
+ * drawn smaller (attached to `aa_mid`), else the target's, if it has one. */
+static inline int jdr_aa_marks(const jd_renderer *r)
+{
+    return r->post_aa && r->aa_mark_prog && (r->iw != r->d.width || r->ih != r->d.height || r->target_depth);
+}
+
 #endif

@@ -7,7 +7,7 @@
 // JD_AA_MARK: the same test alone, drawn first over the whole box: a flat
 // pixel is copied and writes the depth buffer, an edge pixel is discarded,
 // and the full pass then runs under the depth test on the edges only (a
-// few percent of the box: pass_screen.c, jdr_pass_final). The test is this
+// few percent of the box: pass_screen.c, smooth_box). The test is this
 // file's in both, so that a pixel the mark copies is one the full pass
 // would have left as it was.
 uniform sampler2D u_src;    // the frame, display-encoded, bilinear
