@@ -38,6 +38,27 @@ static GLuint depthless_target(void)
     return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? fbo : 0;
 }
 
+/* A frame of `s` into `fbo`, its w x H corner read back (rows bottom-up,
+ * as every target here holds them): 0 with err set where it failed. */
+static int frame_into(jd_renderer *r, const jd_scene *s, GLuint fbo, int w, uint8_t *out, jd_error *err)
+{
+    if (jd_renderer_frame(r, s, NULL, err) != JD_OK) return 0;
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, H, GL_RGBA, GL_UNSIGNED_BYTE, out);
+    return 1;
+}
+
+/* A renderer of `d` in the arena from `mark`, and what it chose. */
+static jd_renderer *make(const jd_renderer_desc *d, jd_arena *a, size_t mark, jd_renderer_info *info, jd_error *err)
+{
+    jd_renderer *r = NULL;
+    jd_arena_reset(a, mark);
+    if (jd_renderer_create(d, a, &r, err) != JD_OK) return NULL;
+    jd_renderer_get_info(r, info);
+    return r;
+}
+
 /* The fragments counted for the program labelled exactly `label`. */
 static double counted(const char *label)
 {
@@ -65,25 +86,20 @@ int main(int argc, char **argv)
     const jd_antialias modes[3] = {JD_AA_OFF, JD_AA_POST, JD_AA_POST};
     GLuint plain = depthless_target();
     CHECK(plain != 0, "a framebuffer without depth");
+    jd_scene s;
+    jd_scene_defaults(&s, NULL);
     for (int k = 0; k < 3; k++) {
-        jd_arena_reset(&a, mark);
         GLuint fbo = k == 2 ? plain : jd_platform_framebuffer(P);
         jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = fbo, .width = W, .height = H,
                               .antialias = modes[k]};
-        jd_renderer *r = NULL;
-        jd_scene s;
-        jd_scene_defaults(&s, NULL);
-        CHECK(jd_renderer_create(&d, &a, &r, &err) == JD_OK, "%s", err.msg);
-        if (!r) return 1;
         jd_renderer_info info;
-        jd_renderer_get_info(r, &info);
+        jd_renderer *r = make(&d, &a, mark, &info, &err);
+        CHECK(r != NULL, "%s", err.msg);
+        if (!r) return 1;
         CHECK(info.post_antialias == (k > 0), "the pass runs only when asked for");
         CHECK(info.antialias_edges_only == (k == 1), "%s", k == 1 ? "the headless target's depth marks the flat pixels"
                                                                   : "no depth buffer, no mark");
-        CHECK(jd_renderer_frame(r, &s, NULL, &err) == JD_OK, "%s", err.msg);
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo); /* rows bottom-up, as both targets hold them */
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, pic[k]);
+        CHECK(frame_into(r, &s, fbo, W, pic[k], &err), "%s", err.msg);
         if (k == 1) {
             CHECK(jd_renderer_count(r, &s, 0, &count, &err) == JD_OK, "%s", err.msg);
             double marked = counted("quad.vert+antialias.frag[mark]"), edges = counted("quad.vert+antialias.frag");
@@ -100,36 +116,22 @@ int main(int argc, char **argv)
     /* Drawn smaller, the frame's depth serves the mark, with or without one
      * in the target; and after a resize that takes other powers of two (the
      * frame's depth attached again), the picture is a fresh renderer's. */
+    GLuint fbo = jd_platform_framebuffer(P);
     for (int k = 0; k < 3; k++) {
-        jd_arena_reset(&a, mark);
-        jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = k == 1 ? plain : jd_platform_framebuffer(P),
+        jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = k == 1 ? plain : fbo,
                               .width = k == 2 ? W / 2 : W, .height = H, .max_width = W, .max_height = H,
                               .antialias = JD_AA_POST, .render_scale = 0.5f};
-        jd_renderer *r = NULL;
-        jd_scene s;
-        jd_scene_defaults(&s, NULL);
-        CHECK(jd_renderer_create(&d, &a, &r, &err) == JD_OK, "%s", err.msg);
-        if (!r) return 1;
         jd_renderer_info info;
-        jd_renderer_get_info(r, &info);
+        jd_renderer *r = make(&d, &a, mark, &info, &err);
+        CHECK(r != NULL, "%s", err.msg);
+        if (!r) return 1;
         CHECK(info.antialias_edges_only, "drawn at %dx%d, the frame's depth marks the flat pixels", info.render_width,
               info.render_height);
-        if (k != 1) {
-            GLuint fbo = jd_platform_framebuffer(P);
-            CHECK(jd_renderer_frame(r, &s, NULL, &err) == JD_OK, "%s", err.msg);
-            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-            glReadPixels(0, 0, d.width, H, GL_RGBA, GL_UNSIGNED_BYTE, small[k == 2 ? 1 : 0]);
-        }
+        if (k != 1) CHECK(frame_into(r, &s, fbo, d.width, small[k == 2 ? 1 : 0], &err), "%s", err.msg);
         if (k == 0) { /* W x H (128 x 128 drawn) -> W/2 x H (64 x 128) -> W x H again */
-            GLuint fbo = jd_platform_framebuffer(P);
-            CHECK(jd_renderer_resize(r, W / 2, H, &err) == JD_OK && jd_renderer_frame(r, &s, NULL, &err) == JD_OK, "%s",
+            CHECK(jd_renderer_resize(r, W / 2, H, &err) == JD_OK && frame_into(r, &s, fbo, W / 2, small[2], &err), "%s",
                   err.msg);
-            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-            glReadPixels(0, 0, W / 2, H, GL_RGBA, GL_UNSIGNED_BYTE, small[2]);
-            CHECK(jd_renderer_resize(r, W, H, &err) == JD_OK && jd_renderer_frame(r, &s, NULL, &err) == JD_OK, "%s",
-                  err.msg);
-            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-            glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, small[1]);
+            CHECK(jd_renderer_resize(r, W, H, &err) == JD_OK && frame_into(r, &s, fbo, W, small[1], &err), "%s", err.msg);
             CHECK(!memcmp(small[0], small[1], (size_t)W * H * 4), "back at %dx%d after a resize: the same picture", W, H);
         }
         jd_renderer_destroy(r);
