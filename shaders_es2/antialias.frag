@@ -2,8 +2,9 @@
 // Anti-aliasing after the fact, where the target has no multisampling: the
 // luma of the four diagonal neighbours says whether this pixel sits on an
 // edge and which way it runs; the colour is then averaged along the edge
-// (two or four taps), and the wider average is kept only if its luma stays
-// within the neighbourhood's range (else it crossed another edge).
+// (two or four taps, in linear light), and the wider average is kept only
+// if its luma stays within the neighbourhood's range (else it crossed
+// another edge).
 // JD_AA_MARK: the same test alone, drawn first over the whole box: a flat
 // pixel is copied and writes the depth buffer, an edge pixel is discarded,
 // and the full pass then runs under the depth test on the edges only (a
@@ -41,9 +42,26 @@ void main()
     float reduce = max((nw + ne + sw + se) * 0.03125, 1.0 / 128.0);
     float scale = 1.0 / (min(abs(dir.x), abs(dir.y)) + reduce);
     dir = clamp(dir * scale, vec2(-4.0), vec2(4.0)) * u_texel;
-    vec3 a = 0.5 * (texture2D(u_src, v_uv - dir * (1.0 / 6.0)).rgb + texture2D(u_src, v_uv + dir * (1.0 / 6.0)).rgb);
-    vec3 b = 0.5 * a + 0.25 * (texture2D(u_src, v_uv - dir * 0.5).rgb + texture2D(u_src, v_uv + dir * 0.5).rgb);
-    float lb = luma(b);
-    gl_FragColor = vec4(lb < lo || lb > hi ? a : b, 1.0);
+    vec3 t0 = texture2D(u_src, v_uv - dir * (1.0 / 6.0)).rgb, t1 = texture2D(u_src, v_uv + dir * (1.0 / 6.0)).rgb;
+    vec3 t2 = texture2D(u_src, v_uv - dir * 0.5).rgb, t3 = texture2D(u_src, v_uv + dir * 0.5).rgb;
+    // Which average to keep is decided on the display-encoded colours, as
+    // FXAA decides; the average itself is taken in linear light. The frame
+    // is encoded about as a square root (shade.frag's sqrt(c / (1 + 0.15
+    // c))), and a mean of encoded values is darker than the light's own
+    // mean, which a pixel's box in linear light (Cycles', the reference's
+    // --pixel-samples) takes: averaged encoded, a silhouette's inner pixels
+    // came out 0.028
+    // too dark in linear light against the same frame drawn at 4 x 4 the
+    // size and box-filtered, 0.019 averaged in linear light (the outer
+    // ones 0.0105 and 0.0086; the whole object's RMSE 0.0203 and 0.0180;
+    // docs/quality.md, "Anti-aliasing in linear light"). A multisampled
+    // RGBA8 target resolves its encoded samples, as this pass did: the
+    // boards that multisample darken their silhouettes so. In fp16 the
+    // square of an encoded value under 2/255 falls below the least normal:
+    // where a GPU flushes it, such a pixel comes out at most 2/255 darker.
+    float lb = luma(0.25 * (t0 + t1) + 0.125 * (t2 + t3));
+    vec3 a = 0.5 * (t0 * t0 + t1 * t1);
+    vec3 b = lb < lo || lb > hi ? a : 0.5 * a + 0.25 * (t2 * t2 + t3 * t3);
+    gl_FragColor = vec4(sqrt(b), 1.0);
 #endif
 }
