@@ -50,15 +50,15 @@ void main()
     // c))), and a mean of encoded values is darker than the light's own
     // mean, which a pixel's box in linear light (Cycles', the reference's
     // --pixel-samples) takes: averaged encoded, a silhouette's inner pixels
-    // came out 0.028
-    // too dark in linear light against the same frame drawn at 4 x 4 the
-    // size and box-filtered, 0.019 averaged in linear light (the outer
-    // ones 0.0105 and 0.0086; the whole object's RMSE 0.0203 and 0.0180;
-    // docs/quality.md, "Anti-aliasing in linear light"). A multisampled
-    // RGBA8 target resolves its encoded samples, as this pass did: the
-    // boards that multisample darken their silhouettes so. In fp16 the
-    // square of an encoded value under 2/255 falls below the least normal:
-    // where a GPU flushes it, such a pixel comes out at most 2/255 darker.
+    // came out 0.028 too dark in linear light against the same frame drawn
+    // at 4 x 4 the size and box-filtered, 0.019 averaged in linear light
+    // (the outer ones 0.0105 and 0.0086; the whole object's RMSE 0.0203 and
+    // 0.0180; docs/quality.md, "Anti-aliasing in linear light"). A
+    // multisampled RGBA8 target resolves its encoded samples, as this pass
+    // did: the boards that multisample darken their silhouettes so. In fp16
+    // the square of an encoded value under 2/255 falls below the least
+    // normal: where a GPU flushes it, such a pixel comes out at most 2/255
+    // darker.
     float lb = luma(0.25 * (t0 + t1) + 0.125 * (t2 + t3));
     vec3 a = 0.5 * (t0 * t0 + t1 * t1);
     vec3 b = lb < lo || lb > hi ? a : 0.5 * a + 0.25 * (t2 * t2 + t3 * t3);

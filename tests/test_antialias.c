@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "display_curve.h"
 #include "frame_cost.h"
 #include "gl.h"
 #include "gl_fixture.h"
@@ -43,14 +44,6 @@ static GLuint target(int w, int h, int with_depth)
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
     }
     return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? fbo : 0;
-}
-
-/* An encoded value in linear light: the inverse of shade.frag's
- * sqrt(c / (1 + 0.15 c)). */
-static double linear(uint8_t v)
-{
-    double d = v / 255.0;
-    return d * d / (1.0 - 0.15 * d * d);
 }
 
 /* A frame of `s` into `fbo`, its w x h corner read back (rows bottom-up,
@@ -126,10 +119,11 @@ static void box_compare(jd_platform *P, const jd_mesh *mesh, const jd_gl_caps *c
         for (int ch = 0; ch < 3; ch++) {
             double box = 0;
             for (int dy = 0; dy < 4; dy++)
-                for (int dx = 0; dx < 4; dx++) box += linear(big[4 * ((4 * y + dy) * 4 * W + 4 * x + dx) + ch]);
+                for (int dx = 0; dx < 4; dx++)
+                    box += jd_display_to_linear(big[4 * ((4 * y + dy) * 4 * W + 4 * x + dx) + ch]);
             box /= 16.0;
             for (int k = 0; k < 2; k++) {
-                double dv = linear(lit[k][4 * i + ch]) - box;
+                double dv = jd_display_to_linear(lit[k][4 * i + ch]) - box;
                 sum[k] += dv, sq[k] += dv * dv;
             }
         }
