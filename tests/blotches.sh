@@ -22,9 +22,6 @@ jade=$1 src=$2
 . "$(dirname "$0")/harness.sh"
 ref=$src/assets/reference/default-marble-back.png mask=$src/assets/reference/default-marble-back-mask.png
 [ -f "$ref" ] && [ -f "$mask" ] || { bad "the committed reference $ref or its mask is missing"; finish blotches; exit; }
-# within WHAT VALUE BOUND
-within() { if awk -v v="$2" -v b="$3" 'BEGIN { exit !(v != "" && v <= b) }'; then ok "$1 $2 <= $3"; else bad "$1 $2, over $3"; fi; }
-closer() { if awk -v a="$2" -v b="$3" 'BEGIN { exit !(a != "" && a < b) }'; then ok "$1 ($2 < $3)"; else bad "$1: $2, not below $3"; fi; }
 metric() { "$jade" metric "$1" "$ref" --mask "$mask" > "$tmp/m.json" || return 1; }
 
 # The committed picture must still be what jade's reference makes: one ray a

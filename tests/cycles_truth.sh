@@ -30,9 +30,6 @@ jade=$1 src=$2
 . "$(dirname "$0")/harness.sh"
 rmse() { "$jade" metric "$1" "$2" --mask "$tmp/mask.png" | sed -n 's/.*"rmse": \([0-9.e-]*\).*/\1/p'; }
 gain() { "$jade" metric "$1" "$2" --mask "$tmp/mask.png" | sed -n 's/.*"best_scale": \([0-9.e-]*\).*/\1/p'; }
-# within WHAT VALUE BOUND
-within() { if awk -v v="$2" -v b="$3" 'BEGIN { exit !(v != "" && v <= b) }'; then ok "$1 $2 <= $3"; else bad "$1 $2, over $3"; fi; }
-closer() { if awk -v a="$2" -v b="$3" 'BEGIN { exit !(a != "" && a < b) }'; then ok "$1 ($2 < $3)"; else bad "$1: $2, not below $3"; fi; }
 # jade's albedo is the transport equation's (the half-space's exact albedo,
 # jade_albedo_ratio; in the reference the light's beam by its angle), not the
 # dipole's Rd_total: the last columns hold what the dipole's reference

@@ -10,6 +10,10 @@ finish() { echo "$1: $pass passed, $fail failed"; [ "$fail" -eq 0 ]; }
 # A number from the one-line JSON on stdin (jade metric, bench, the
 # measuring tools): `field KEY`.
 field() { sed -n "s/.*\"$1\": \([-0-9.e]*\).*/\1/p"; }
+# A figure held to a bound: `within WHAT VALUE BOUND` (VALUE <= BOUND) and
+# `closer WHAT A B` (A < B); an empty value fails.
+within() { if awk -v v="$2" -v b="$3" 'BEGIN { exit !(v != "" && v <= b) }'; then ok "$1 $2 <= $3"; else bad "$1 $2, over $3"; fi; }
+closer() { if awk -v a="$2" -v b="$3" 'BEGIN { exit !(a != "" && a < b) }'; then ok "$1 ($2 < $3)"; else bad "$1: $2, not below $3"; fi; }
 # Tests that preload a library into jade (gl_count, gl_sabotage): ASan
 # must come first in a sanitized build, so they skip there.
 preload_or_skip() {
