@@ -248,6 +248,7 @@ case $mode in
         # "new"); a name that repeats counts its occurrences. A GPU's hard
         # limit (limit[]) is checked with 10% to spare: a program nearer
         # than that fails whatever the committed table says.
+        budget_bad=0
         awk '
             BEGIN { limit["etnaviv-gc400"] = 256; limit["etnaviv-gc2000"] = 256 }
             function name(drv, prog,   n) {
@@ -275,7 +276,12 @@ case $mode in
                 if ($8 > want_sp[key]) { print "device-shaders: " key ": spills " want_sp[key] " -> " $8; bad = 1 }
             }
             END { exit bad }
-        ' "$expected" "$table" && echo "device-shaders: within the committed budget and the GPUs' limits ($expected)"
+        ' "$expected" "$table" || budget_bad=1
+        # The budget's verdict is the exit status: the check after it must
+        # not replace it (it did: a program over the budget printed its line
+        # and the script still exited 0).
+        [ "$budget_bad" -eq 0 ] && echo "device-shaders: within the committed budget and the GPUs' limits ($expected)"
         [ "$ms_bad" -eq 0 ] || { echo "device-shaders: lima drew the smaller picture without samples (above)"; exit 1; }
+        [ "$budget_bad" -eq 0 ] || exit 1
         ;;
 esac
