@@ -68,6 +68,14 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
             glUniform3fv(p->spec_x, 1, spec);
         }
         if (p->keep >= 0) glUniform3fv(p->keep, 2, &r->keep[0][0]);
+        if (p->bounce_rd >= 0) {
+            /* The light between parts leaves the surface it came from and
+             * enters this one: an albedo each. The levels' half-resolution
+             * sum takes it halved, as it stores its sum (shade.frag). */
+            float rd2[3], k = p == &r->wide_prog ? 0.5f : 1.0f;
+            for (int c = 0; c < 3; c++) rd2[c] = k * f->albedo[c] * f->albedo[c];
+            glUniform3fv(p->bounce_rd, 1, rd2);
+        }
         glUniform4fv(p->light_map_v, 1, f->light_map);
         glUniform3f(p->light_dir_v, f->light_dir.x, f->light_dir.y, f->light_dir.z);
         if (p->slab >= 0 || p->slab_v >= 0) { /* unit 6: the wide buffer's, which these programs do not read */

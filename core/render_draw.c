@@ -11,8 +11,12 @@ void jdr_bind_mesh(GLuint vbo, GLuint ibo)
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
     glEnableVertexAttribArray(0);
     glEnableVertexAttribArray(1);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 24, (const void *)0);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 24, (const void *)12);
+    glEnableVertexAttribArray(4);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN, (const void *)0);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN, (const void *)12);
+    /* The light between parts' transfer, last in the vertex (render_target.c). */
+    glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN,
+                          (const void *)(JDR_STRIDE_PLAIN - JDR_BOUNCE_BYTES));
 }
 
 void jdr_mesh_attributes(const jd_renderer *r, size_t at)
@@ -20,6 +24,7 @@ void jdr_mesh_attributes(const jd_renderer *r, size_t at)
     GLsizei st = (GLsizei)r->vstride;
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, st, (const void *)at);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, st, (const void *)(at + 12));
+    glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, st, (const void *)(at + (size_t)st - JDR_BOUNCE_BYTES));
     if (!r->albedo) return;
     glEnableVertexAttribArray(2);
     glEnableVertexAttribArray(3);
@@ -31,6 +36,7 @@ void jdr_bind_quad(const jd_renderer *r)
 {
     glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
     glDisableVertexAttribArray(1);
+    glDisableVertexAttribArray(4);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 8, (const void *)0);
 }

@@ -72,6 +72,16 @@ varying vec3 v_half;
 #endif
 #if JD_FULL
 uniform vec3 u_keep[2];     // a lit face's light kept by a part t thick: 1 - a 2^(-b t) (pass_light.c)
+// The light between parts: what the rest of the object's lit surface sends
+// this vertex across the air, G(l) = max(0, a_bounce . (l, 1)) of the
+// light's irradiance (core/mesh_bounce.c, made once at set-up), given out
+// again by both albedos (u_bounce_rd: Rd_total squared, per channel). A
+// per-vertex value that the fragment stage takes with the levels' light.
+attribute vec4 a_bounce;
+uniform vec3 u_bounce_rd;
+#if JD_WIDE_ONLY
+varying vec3 v_bounce;
+#endif
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
 // Where the vertex stage can read textures, the full mode's light-space
@@ -143,10 +153,17 @@ void main()
     // per channel, fitted on the CPU), the local part's and the levels'.
     vec3 keep = 1.0 - u_keep[0] * exp2(-u_keep[1] * thick);
 #endif
+#if JD_FULL
+    vec3 bounce = u_bounce_rd * max(dot(a_bounce, vec4(u_light_dir, 1.0)), 0.0);
+#endif
 #if JD_WIDE_ONLY
     vec3 nk = an;
     if (dot(nk, u_eye - a_position) < 0.0) nk = -nk;
-    v_keep = mix(vec3(1.0), keep, step(0.0, dot(nk, u_light_dir)));
+    // Both halved (the light between parts by its uniform: pass_screen.c):
+    // the buffer holds sqrt(wide / 2) (shade.frag), and the halving here
+    // is a multiply fewer there.
+    v_keep = 0.5 * mix(vec3(1.0), keep, step(0.0, dot(nk, u_light_dir)));
+    v_bounce = bounce;
 #endif
 #if JD_WIDE_ONLY
     v_pos = vec4(a_position, 0.5 * thick);
@@ -217,6 +234,7 @@ void main()
     v_wide += jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v, u_slab_scale_v,
                             dot(texture2D(u_depth_v, v_shadow.xy).xy, jd_bytes), thick * 0.5 * u_slab_scale_v, lit);
 #endif
+    v_wide += bounce;
 #endif
 #if JD_TRANSLUCENT
     vec3 n = an;

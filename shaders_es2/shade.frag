@@ -16,7 +16,8 @@ uniform vec4 u_light_map;    // light-depth texels per side, their inverse, Schl
 uniform sampler2D u_depth;   // light depth, packed; irradiance in alpha (full: the exponential shadow map)
 #if JD_WIDE_ONLY
 varying vec4 v_pos;          // w: the part's thickness, half (light-depth units: mesh.vert)
-varying vec3 v_keep;         // the levels' share a lit face of a thin part keeps (mesh.vert)
+varying vec3 v_keep;         // the levels' share a lit face of a thin part keeps, halved (mesh.vert)
+varying vec3 v_bounce;       // the light between parts, halved (mesh.vert)
 #else
 varying vec3 v_view;         // towards the eye, unit length at the vertices (mesh.vert)
 #endif
@@ -259,12 +260,14 @@ void main()
     wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, sd, v_pos.w * u_slab_scale, lit);
 #endif
 #if JD_WIDE_ONLY
-    // As the vertex stage's: a lit face of a thin part returns R(t).
-    wide *= v_keep;
+    // As the vertex stage's: a lit face of a thin part returns R(t); and
+    // the light between parts. Both come halved (mesh.vert), as the
+    // buffer holds the sum.
+    wide = wide * v_keep + v_bounce;
 #endif
 #endif
 #if JD_WIDE_ONLY
-    gl_FragColor = vec4(sqrt(clamp(0.5 * wide, 0.0, 1.0)), 1.0);
+    gl_FragColor = vec4(sqrt(clamp(wide, 0.0, 1.0)), 1.0);
     return;
 #else
 #if JD_WIDE_BUFFER
