@@ -14,13 +14,13 @@
  *    giving out what it took in, 1 / pi of it, and a cosine-distributed
  *    fan sums irradiance as the plain mean, so g_P is the mean of T at the
  *    hits (the hit's triangle's corners, by their weights).
- * Left out, measured in docs/quality.md: the Fresnel transmittance at
- * both boundaries (its mean under diffuse light is jade's unit), the
+ * Left out (docs/quality.md, "Light between parts in full"): the
  * diffusion of that light under the hit's and the vertex's surfaces (a
  * dipole's profile over the mesh on both ends took the knot no closer to
- * Cycles), the colours of the surfaces it came from, the ambient light's
- * share, and further bounces (the reference's second brings a tenth of
- * its first). */
+ * Cycles, measured); unmeasured, the Fresnel transmittance at both
+ * boundaries (its mean under diffuse light is jade's unit), the colours of
+ * the surfaces it came from, the ambient light's share, and further
+ * bounces (the reference's second brought a tenth of its first). */
 #include "mesh_bounce.h"
 
 #include <math.h>
