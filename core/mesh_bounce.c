@@ -1,10 +1,11 @@
 /* Light between parts (mesh_bounce.h), as precomputed radiance transfer
  * (Sloan, Kautz and Snyder 2002) in spherical harmonics of the first two
- * orders, which hold a cosine lobe to within a few percent of its energy.
+ * orders (on the knot as close to Cycles as the first three:
+ * docs/quality.md).
  *
  * Two steps, each one ray fan a vertex over its outer hemisphere,
- * cosine-distributed (a golden-angle spiral turned by a hash of the
- * vertex):
+ * cosine-distributed (jd_cosine_ray, the fan of jade reference's own
+ * light between parts):
  * 1. the light a vertex Q takes in as a function of the light's direction
  *    l, n.l where the sky above Q is open towards l and 0 where another
  *    part shadows it, projected: T_Q = integral of n.l V(l) Y(l) over l,
@@ -26,29 +27,8 @@
 #include <math.h>
 
 #include "mesh_grid.h"
-
-/* Y_0^0 and the three of order 1, in the order x, y, z, constant. */
-static void basis(const float d[3], float y[JD_BOUNCE_TERMS])
-{
-    y[0] = 0.488603f * d[0], y[1] = 0.488603f * d[1], y[2] = 0.488603f * d[2], y[3] = 0.282095f;
-}
-
-/* Ray k of `rays` over the hemisphere round n (t1, t2: a frame with it),
- * cosine-distributed; rot turns the spiral. */
-static void fan_ray(int k, int rays, float rot, const jd_vec3 *t1, const jd_vec3 *t2, const jd_vec3 *n, float d[3])
-{
-    float u = ((float)k + 0.5f) / (float)rays, phi = 6.2831853f * fmodf(0.618034f * (float)k + rot, 1.0f);
-    float s = sqrtf(u), z = sqrtf(1.0f - u), cx = s * cosf(phi), cy = s * sinf(phi);
-    d[0] = cx * t1->x + cy * t2->x + z * n->x;
-    d[1] = cx * t1->y + cy * t2->y + z * n->y;
-    d[2] = cx * t1->z + cy * t2->z + z * n->z;
-}
-
-static void frame_of(jd_vec3 n, jd_vec3 *t1, jd_vec3 *t2)
-{
-    *t1 = jd_v3_norm(jd_v3_cross(n, fabsf(n.x) < 0.9f ? jd_v3(1, 0, 0) : jd_v3(0, 1, 0)));
-    *t2 = jd_v3_cross(n, *t1);
-}
+#include "sh.h"
+#include "vmath.h"
 
 jd_result jd_mesh_bounce(const jd_mesh *m, int rays, jd_arena *a, float *out, jd_error *err)
 {
@@ -65,19 +45,20 @@ jd_result jd_mesh_bounce(const jd_mesh *m, int rays, jd_arena *a, float *out, jd
     float eps = 1e-4f * ext, cap = 4.0f * ext;
     for (int step = 0; step < 2; step++)
         for (uint32_t i = 0; i < nv; i++) {
-            jd_vec3 n = jd_unit_normal(m->normals + 3 * (size_t)i), t1, t2;
-            frame_of(n, &t1, &t2);
+            jd_vec3 un = jd_unit_normal(m->normals + 3 * (size_t)i);
+            float n[3] = {un.x, un.y, un.z}, t1[3], t2[3];
+            jd_hemisphere_frame(n, t1, t2);
             const float *p = m->positions + 3 * (size_t)i;
-            float o[3] = {p[0] + 2.0f * eps * n.x, p[1] + 2.0f * eps * n.y, p[2] + 2.0f * eps * n.z};
-            float rot = (float)((i * 2654435761u) >> 16) / 65536.0f;
+            float o[3] = {p[0] + 2.0f * eps * n[0], p[1] + 2.0f * eps * n[1], p[2] + 2.0f * eps * n[2]};
+            float turn = (float)(i * 2654435761u) * (1.0f / 4294967296.0f);
             double acc[JD_BOUNCE_TERMS] = {0};
             for (int k = 0; k < rays; k++) {
                 float d[3];
-                fan_ray(k, rays, rot, &t1, &t2, &n, d);
+                jd_cosine_ray(n, t1, t2, k, rays, turn, d);
                 if (step == 0) { /* the sky open towards d */
                     if (jd_mesh_grid_blocked(m, &g, o, d, eps, cap)) continue;
-                    float y[JD_BOUNCE_TERMS];
-                    basis(d, y);
+                    double w[3] = {d[0], d[1], d[2]}, y[9];
+                    jd_sh_basis(w, y); /* y[0]: the constant; y[1], y[2], y[3]: y, z, x */
                     for (int b = 0; b < JD_BOUNCE_TERMS; b++) acc[b] += y[b];
                     continue;
                 }
@@ -95,12 +76,17 @@ jd_result jd_mesh_bounce(const jd_mesh *m, int rays, jd_arena *a, float *out, jd
                 for (int j = 0; j < 3; j++)
                     for (int b = 0; b < JD_BOUNCE_TERMS; b++) acc[b] += w[j] * t[JD_BOUNCE_TERMS * (size_t)c[j] + (size_t)b];
             }
-            /* Step 2's sums take the basis's constants again: G(l) is then
+            if (step == 0) {
+                for (int b = 0; b < JD_BOUNCE_TERMS; b++)
+                    t[JD_BOUNCE_TERMS * (size_t)i + (size_t)b] = (float)(acc[b] * 3.14159265358979 / rays);
+                continue;
+            }
+            /* Step 2's sums (jd_sh_basis's order) take the basis's
+             * constants again, in the order x, y, z, constant: G(l) is then
              * one dot product with (l, 1) in the vertex stage. */
-            static const double again[JD_BOUNCE_TERMS] = {0.488603, 0.488603, 0.488603, 0.282095};
-            float *dst = (step == 0 ? t : out) + JD_BOUNCE_TERMS * (size_t)i;
-            for (int b = 0; b < JD_BOUNCE_TERMS; b++)
-                dst[b] = (float)(step == 0 ? acc[b] * 3.14159265358979 / rays : acc[b] * again[b] / rays);
+            float *dst = out + JD_BOUNCE_TERMS * (size_t)i;
+            dst[0] = (float)(acc[3] * 0.488603 / rays), dst[1] = (float)(acc[1] * 0.488603 / rays);
+            dst[2] = (float)(acc[2] * 0.488603 / rays), dst[3] = (float)(acc[0] * 0.282095 / rays);
         }
     jd_arena_top_reset(a, top);
     return JD_OK;

@@ -421,18 +421,14 @@ static void bounce_chunk(void *ctx, long b, long e, uint64_t *evals)
     jd_ref *r = c->r;
     for (long i = b; i < e; i++) {
         const float *p = c->placed[i].p, *n = r->pt_n + 6 * i, *ng = r->pt_n + 6 * i + 3;
-        float t[3], bt[3], a[3] = {fabsf(n[0]) < 0.9f ? 1.0f : 0.0f, fabsf(n[0]) < 0.9f ? 0.0f : 1.0f, 0.0f};
-        t[0] = a[1] * n[2] - a[2] * n[1], t[1] = a[2] * n[0] - a[0] * n[2], t[2] = a[0] * n[1] - a[1] * n[0];
-        normalize3(t);
-        bt[0] = n[1] * t[2] - n[2] * t[1], bt[1] = n[2] * t[0] - n[0] * t[2], bt[2] = n[0] * t[1] - n[1] * t[0];
+        float t[3], bt[3];
+        jd_hemisphere_frame(n, t, bt);
         /* Leave on the outer side of the true surface. */
         float side = dot3(ng, n) >= 0 ? 1.0f : -1.0f, o[3], acc[3] = {0, 0, 0};
         for (int k = 0; k < 3; k++) o[k] = p[k] + side * r->eps * ng[k];
         float turn = (float)((uint32_t)i * 2654435761u) * (1.0f / 4294967296.0f);
         for (int s = 0; s < JD_BOUNCE_RAYS; s++) {
-            float u1 = (s + 0.5f) / JD_BOUNCE_RAYS, u2 = fmodf(s * 0.618034f + turn, 1.0f);
-            float rr = sqrtf(u1), ph = 6.2831853f * u2, cz = sqrtf(1.0f - u1), d[3];
-            for (int k = 0; k < 3; k++) d[k] = (t[k] * cosf(ph) + bt[k] * sinf(ph)) * rr + n[k] * cz;
+            float d[3], cz = jd_cosine_ray(n, t, bt, s, JD_BOUNCE_RAYS, turn, d);
             jd_hit hit;
             if (!jd_bvh_intersect(&r->bvh, o, d, 0.0f, 1e30f, &hit)) continue;
             float q[3], nq[3], ngq[3], mo[3], loc[6], lo[3];
