@@ -28,7 +28,7 @@
 
 #include "mesh_grid.h"
 #include "sh.h"
-#include "vmath.h"
+#include "ray_fan.h"
 
 jd_result jd_mesh_bounce(const jd_mesh *m, int rays, jd_arena *a, float *out, jd_error *err)
 {

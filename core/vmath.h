@@ -20,15 +20,6 @@ jd_vec3 jd_v3_norm(jd_vec3 a);
 /* Unit vector from azimuth (about +Y, from +Z towards +X) and elevation, in degrees. */
 jd_vec3 jd_v3_from_angles(float azimuth_deg, float elevation_deg);
 
-/* A fan of rays over the hemisphere round the unit normal n,
- * cosine-distributed: a golden-angle spiral turned by `turn` (0..1, a hash
- * of the point, so that neighbours' fans differ). jd_hemisphere_frame
- * gives t and b, unit and at right angles to n and each other; ray k of
- * count is then jd_cosine_ray's d, which returns its cosine to n. jade
- * reference's light between parts and core's (mesh_bounce.c) both cast it. */
-void jd_hemisphere_frame(const float n[3], float t[3], float b[3]);
-float jd_cosine_ray(const float n[3], const float t[3], const float b[3], int k, int count, float turn, float d[3]);
-
 jd_mat4 jd_m4_identity(void);
 jd_mat4 jd_m4_mul(jd_mat4 a, jd_mat4 b);
 jd_mat4 jd_m4_look_at(jd_vec3 eye, jd_vec3 target, jd_vec3 up);

@@ -19,7 +19,7 @@
 #include "ref_samples.h"
 #include "ref_slab.h"
 #include "ref_volume.h"
-#include "vmath.h"
+#include "ray_fan.h"
 
 enum { JD_BEAM_STEPS = 64 }; /* the beam's albedo table: its cosine in 64 steps */
 
