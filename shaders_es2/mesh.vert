@@ -151,18 +151,26 @@ void main()
     // On a lit face, the share of the light that a part this thick keeps
     // (its slab's R(t) of the half-space's, pass_light.c: 1 - a 2^(-b t),
     // per channel, fitted on the CPU), the local part's and the levels'.
-    vec3 keep = 1.0 - u_keep[0] * exp2(-u_keep[1] * thick);
+    vec3 lose = u_keep[0] * exp2(-u_keep[1] * thick);
+#if !JD_WIDE_ONLY
+    vec3 keep = 1.0 - lose;
+#endif
 #endif
 #if JD_FULL
     vec3 bounce = u_bounce_rd * max(dot(a_bounce, vec4(u_light_dir, 1.0)), 0.0);
 #endif
 #if JD_WIDE_ONLY
-    vec3 nk = an;
-    if (dot(nk, u_eye - a_position) < 0.0) nk = -nk;
-    // Both halved (the light between parts by its uniform: pass_screen.c):
-    // the buffer holds sqrt(wide / 2) (shade.frag), and the halving here
-    // is a multiply fewer there.
-    v_keep = 0.5 * mix(vec3(1.0), keep, step(0.0, dot(nk, u_light_dir)));
+    // The face seen is lit where n.v and n.l have the same sign: one
+    // product, not the normal turned towards the eye (three selects)
+    // before the dot. And the share is written 1/2 - lit/2 (1 - keep), not
+    // mix(1, keep, lit) / 2, the same value. lima's vertex stage: 64 words
+    // as the other passes write it, 61 with the product, 57 with the form,
+    // 56 with both (Midgard 32 -> 31 bundles).
+    // Halved (the light between parts by its uniform: pass_screen.c): the
+    // buffer holds sqrt(wide / 2) (shade.frag), and the halving here is a
+    // multiply fewer there.
+    float lit_face = step(0.0, dot(an, u_eye - a_position) * dot(an, u_light_dir));
+    v_keep = 0.5 - (0.5 * lit_face) * lose;
     v_bounce = bounce;
 #endif
 #if JD_WIDE_ONLY
