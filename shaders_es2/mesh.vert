@@ -13,7 +13,7 @@ uniform mat4 u_light_tex;
 uniform mediump vec3 u_eye; // shared with the fragment stage: precisions must match
 uniform vec2 u_shadow_bias;  // light-depth units: per unit of the surface's slope to the light, and always
 #if JD_WIDE_ONLY
-varying vec4 v_pos;          // w: the part's thickness, half (light-depth units)
+varying vec2 v_pos;          // x: n.l, signed as the face is seen; y: the part's thickness, half (light-depth units)
 varying vec3 v_keep;        // the levels' share a lit face keeps (below)
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 #else
@@ -169,12 +169,14 @@ void main()
     // Halved (the light between parts by its uniform: pass_screen.c): the
     // buffer holds sqrt(wide / 2) (shade.frag), and the halving here is a
     // multiply fewer there.
-    float lit_face = step(0.0, dot(an, u_eye - a_position) * dot(an, u_light_dir));
+    float dv = dot(an, u_eye - a_position), dl = dot(an, u_light_dir);
+    float lit_face = step(0.0, dv * dl);
     v_keep = 0.5 - (0.5 * lit_face) * lose;
     v_bounce = bounce;
 #endif
 #if JD_WIDE_ONLY
-    v_pos = vec4(a_position, 0.5 * thick);
+    // n.l as the face is seen, for the summing pass's ramp (shade.frag).
+    v_pos = vec2(dv < 0.0 ? -dl : dl, 0.5 * thick);
 #else
     vec3 vf = normalize(u_eye - a_position);
     v_view = vf;

@@ -15,7 +15,7 @@ uniform vec4 u_shading;      // ambient, specular, shininess, exposure
 uniform vec4 u_light_map;    // light-depth texels per side, their inverse, Schlick F0, depth slack of the proxy
 uniform sampler2D u_depth;   // light depth, packed; irradiance in alpha (full: the exponential shadow map)
 #if JD_WIDE_ONLY
-varying vec4 v_pos;          // w: the part's thickness, half (light-depth units: mesh.vert)
+varying vec2 v_pos;          // x: n.l, signed as the face is seen; y: the part's thickness, half (light-depth units: mesh.vert)
 varying vec3 v_keep;         // the levels' share a lit face of a thin part keeps, halved (mesh.vert)
 varying vec3 v_bounce;       // the light between parts, halved (mesh.vert)
 #else
@@ -162,10 +162,16 @@ void main()
 #endif
 #if JD_WIDE_ONLY
     // The summing pass takes only n.l's sign and its first quarter (the
-    // terminator's ramp): the interpolated normal needs no normalising,
-    // nor the view its length for the side test.
-    vec3 n = v_normal;
-    if (dot(n, u_eye - v_pos.xyz) < 0.0) n = -n;
+    // terminator's ramp), with the normal turned to the eye: made per
+    // vertex (mesh.vert), as n.l of the interpolated normal is the
+    // interpolated n.l. Turned per vertex, a triangle across the
+    // silhouette has a vertex each way, where per fragment it took the
+    // side of each fragment; its three dot products, the turn and the
+    // varyings of the normal and the position cost lima 4 words here
+    // (271 -> 267) and Vivante GC400/GC2000 7 instructions; Midgard's
+    // scheduler packs the shorter program into 4 bundles more (125 -> 129),
+    // its vertex stage 5 fewer.
+    float nl = v_pos.x;
 #else
     vec3 n = normalize(v_normal);
     // The direction to the eye as the vertices had it, not normalised
@@ -183,7 +189,9 @@ void main()
     // half range so values up to 2 survive RGBA8.
     gl_FragColor = vec4(0.5 * translucency(), 1.0);
 #else
+#if !JD_WIDE_ONLY
     float ndl = max(dot(n, u_light_dir), 0.0);
+#endif
 #if JD_FULL
     // full's own test, soft (light.glsl, jd_soft_lit): u_depth holds the
     // exponential shadow map here. v_shadow.z: the depth not moved
@@ -246,7 +254,11 @@ void main()
     vec3 we = wb.a > 0.01 ? wb.rgb / wb.a : vec3(0.0);
     vec3 wide = we * we;
 #else
+#if JD_WIDE_ONLY
+    float lit = jd_lit_ramp(nl, vis);
+#else
     float lit = jd_lit_ramp(dot(n, u_light_dir), vis);
+#endif
     vec3 wide = jd_diffused(u_lv0, u_lv1, u_lv2, u_lv3, u_lv4, v_shadow.xyw, u_lw, u_ls, u_ls[1].z, u_light_map.w, lit);
 #ifndef JD_NO_SLAB
     // As the vertex stage's (mesh.vert): through thin parts, to faces the
@@ -257,7 +269,7 @@ void main()
     // from merging the two; the map has no mip levels, so it reads the
     // same texels.
     float sd = jd_depth(texture2D(u_depth, v_shadow.xy, -1.0));
-    wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, sd, v_pos.w * u_slab_scale, lit);
+    wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, sd, v_pos.y * u_slab_scale, lit);
 #endif
 #if JD_WIDE_ONLY
     // As the vertex stage's: a lit face of a thin part returns R(t); and
