@@ -18,8 +18,8 @@ varying vec3 v_keep;        // the levels' share a lit face keeps (below)
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 #else
 varying vec3 v_view;        // towards the eye, unit length: the fragment stage takes it as it comes
+varying vec3 v_normal;      // (the summing pass takes n.l in v_pos instead)
 #endif
-varying vec3 v_normal;
 // Where the point falls in the light-depth map, moved towards the light so
 // that the map (drawn from a coarser proxy, in texels) does not shadow the
 // surface it was drawn from: by the proxy's error, and by the depth a texel
@@ -180,8 +180,8 @@ void main()
 #else
     vec3 vf = normalize(u_eye - a_position);
     v_view = vf;
-#endif
     v_normal = an;
+#endif
     gl_Position = u_mvp * vec4(a_position, 1.0);
 #if JD_ALBEDO_MAP
     // The entry's mip bias (shade.frag): the radius in pixels here, nearer

@@ -20,8 +20,8 @@ varying vec3 v_keep;         // the levels' share a lit face of a thin part keep
 varying vec3 v_bounce;       // the light between parts, halved (mesh.vert)
 #else
 varying vec3 v_view;         // towards the eye, unit length at the vertices (mesh.vert)
+varying vec3 v_normal;       // (the summing pass takes n.l from the vertices instead)
 #endif
-varying vec3 v_normal;
 varying vec4 v_shadow;
 #if JD_TRANSLUCENT
 #if !JD_VERTEX_THICKNESS
