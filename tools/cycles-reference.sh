@@ -19,7 +19,8 @@
 # --specular is moot (neither boundary has a highlight). Meshes: OBJ, PLY or
 # STL.
 # Writes PREFIX.png (jade's tone curve), PREFIX.pfm (linear) and
-# PREFIX.mask.png, and prints the Blender command it ran.
+# PREFIX.mask.png, and prints the Blender command it ran. --bounces: at most
+# 1024 [1024], which Blender will not exceed (it clamps; the scene refuses).
 #
 #   tools/cycles-reference.sh --mesh bunny.obj --size 128x128 --material skin1 \
 #       --eta 1 --ambient 0 --light-azimuth -30 --light-elevation 40 --out skin1_front
