@@ -646,7 +646,11 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
 static uint32_t exitance(const jd_ref *r, const float x[3], const float n[3], const float e[3], float out[3])
 {
     if (r->d.volume) {
+        /* The solve's light is diffusion's; the exact albedo's excess over
+         * it leaves at the point it entered (ref_diffusion.c). */
         jd_volume_exitance(&r->vol, x, n, out);
+        for (int c = 0; c < 3; c++)
+            if (r->dp.ratio[c] > 0) out[c] += (float)((1.0 - 1.0 / r->dp.ratio[c]) * r->dp.rd_total[c]) * e[c];
         return 1;
     }
     uint32_t evals = jd_diffusion_exitance(&r->diff, x, e, out);

@@ -119,7 +119,9 @@ jd_result jd_volume_init(jd_volume *v, const jd_volume_desc *d, jd_error *err)
         double st = d->dp->sigma_t[c];
         v->D[c] = st > 0 ? (float)(1.0 / (3.0 * st)) : 0.0f;
         v->zb[c] = (float)(2.0 * d->dp->A * v->D[c]);
-        v->scale[c] = (float)d->dp->ratio[c];
+        /* Diffusion's own light: the exact albedo's excess leaves where the
+         * light entered (ref_render.c, exitance), as in the dipole's sum. */
+        v->scale[c] = 1.0f;
     }
     jd_result res = boundary(v, d, err);
     if (res) jd_volume_free(v);

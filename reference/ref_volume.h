@@ -19,8 +19,9 @@
  * along the surface's normal) weighted by |cos| of that normal to the axis,
  * so the grid's steps add up to the true area. The picture reads the flux
  * at those faces' own surface points within 3 cells, with a smooth window:
- * exactly the light the solve lets out, the profile's scale times the
- * albedo ratio of jd_dipole (the same as the dipole's).
+ * exactly the light the solve lets out: diffusion's, unscaled (the exact
+ * albedo's excess over it is added where the light entered, ref_render.c,
+ * as the dipole's sum adds it in its window).
  *
  * Checked (tests/test_reference.c, a closed 100 x 100 mm marble box lit
  * on top): 4 mm thick, the lit and the far face give Donner & Jensen's
@@ -58,7 +59,7 @@ typedef struct jd_volume {
         uint8_t axis;        /* the face's outward direction: -x, +x, -y, +y, -z, +z */
     } *faces;
     uint32_t num_faces;
-    float D[3], zb[3], scale[3]; /* diffusion constant, 2AD, the albedo ratio (jd_dipole.ratio) */
+    float D[3], zb[3], scale[3]; /* diffusion constant, 2AD, the flux's scale (1) */
     int iterations;          /* the solve's, the largest of the three channels' */
     double residual;         /* relative, at the end */
     double lost;             /* the share of the sources' power that found no cell (parts thinner than one) */
