@@ -205,17 +205,14 @@ jd_result jd_diffusion_build(jd_diffusion *d, jd_ref_point *pts, uint32_t n, con
         d->zv2[c] = d->zv[c] * d->zv[c];
         d->zb2[c] = d->zv[c] - d->zr[c];
         d->str[c] = (float)dp->sigma_tr[c];
-        /* The profile is diffusion's own, unscaled: what the transport
-         * equation's albedo has over diffusion's (jd_albedo_ratio) is the
-         * light of the first few scatterings, which leaves where it entered,
-         * and the window's part below takes it. Scaled over the whole
-         * profile it also lit the far light by that ratio: on a 20 mm
-         * sphere in ketchup (red ratio 1.43) the volume solve, which took
-         * the same scale, came out 41% over Cycles and 3% under without it
-         * (docs/quality.md, "The excess where the light enters"). The light
-         * carried across a thin part keeps the scale: its weights are the
-         * slab's totals (ref_slab.c). */
-        d->k[c] = (float)(dp->alpha[c] * (carried ? dp->ratio[c] : 1.0) / (4.0 * M_PI));
+        /* The profile is diffusion's own, unscaled, and the window's part
+         * below takes the exact albedo's excess (jd_ref_diffusion_share):
+         * on a 20 mm ketchup sphere the volume solve, scaled whole by the
+         * red's ratio of 1.43, came out 41% over Cycles, 3% under without
+         * it. The light carried across a thin part keeps the scale: its
+         * weights are the slab's totals (ref_slab.c). */
+        double share = jd_ref_diffusion_share(dp, c);
+        d->k[c] = (float)(dp->alpha[c] / (carried ? share : 1.0) / (4.0 * M_PI));
         if (carried) continue; /* summed whole: no window, no table */
         /* Rd w over the plane, r in [0, r0]: Simpson on a fine grid (Rd is
          * smooth at the scale of z_r, and the grid is far finer). */
@@ -229,8 +226,7 @@ jd_result jd_diffusion_build(jd_diffusion *d, jd_ref_point *pts, uint32_t n, con
         /* jd_dipole_rd is the scaled profile: the window keeps diffusion's
          * share of it and the whole of the excess, so that a flat part under
          * uniform light still gives out Rd_total. */
-        double ratio = dp->ratio[c] > 0 ? dp->ratio[c] : 1.0;
-        d->local[c] = (r0_mm > 0 ? sum * h / 3.0 : 0.0) / ratio + (1.0 - 1.0 / ratio) * dp->rd_total[c];
+        d->local[c] = (r0_mm > 0 ? sum * h / 3.0 : 0.0) * share + (1.0 - share) * dp->rd_total[c];
     }
     if (!n) return jd_fail(err, JD_ERR_ARG, "no irradiance samples");
     if (!carried) {

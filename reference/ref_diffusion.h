@@ -14,13 +14,25 @@
  * Rd w is integrated exactly over the local tangent plane (a flat
  * neighbourhood of radius r0) times the samples' irradiance averaged with
  * the same weights; Rd (1 - w), which vanishes at r = 0, is summed over the
- * samples. */
+ * samples. Rd is diffusion's own profile; the exact albedo's excess over
+ * it (the first scatterings' light) joins the window's part, where the
+ * light entered (jd_ref_diffusion_share). */
 #ifndef JD_REF_DIFFUSION_H
 #define JD_REF_DIFFUSION_H
 
 #include <stdint.h>
 #include "jd_result.h"
 #include "material.h"
+
+/* Of the half-space's light (Rd_total, the transport equation's albedo),
+ * the share that diffusion's own profile carries: 1 / jd_albedo_ratio. The
+ * rest, (1 - share) Rd_total, is the light of the first few scatterings,
+ * which leaves where it entered: scaled over the whole profile it also lit
+ * the far light (docs/quality.md, "The excess where the light enters"). */
+static inline double jd_ref_diffusion_share(const jd_dipole *dp, int c)
+{
+    return dp->ratio[c] > 0 ? 1.0 / dp->ratio[c] : 1.0;
+}
 
 typedef struct jd_ref_point {
     float p[3];   /* mm */

@@ -649,8 +649,7 @@ static uint32_t exitance(const jd_ref *r, const float x[3], const float n[3], co
         /* The solve's light is diffusion's; the exact albedo's excess over
          * it leaves at the point it entered (ref_diffusion.c). */
         jd_volume_exitance(&r->vol, x, n, out);
-        for (int c = 0; c < 3; c++)
-            if (r->dp.ratio[c] > 0) out[c] += (float)((1.0 - 1.0 / r->dp.ratio[c]) * r->dp.rd_total[c]) * e[c];
+        for (int c = 0; c < 3; c++) out[c] += (float)((1.0 - jd_ref_diffusion_share(&r->dp, c)) * r->dp.rd_total[c]) * e[c];
         return 1;
     }
     uint32_t evals = jd_diffusion_exitance(&r->diff, x, e, out);

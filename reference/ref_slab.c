@@ -1,4 +1,5 @@
 #include "ref_slab.h"
+#include "ref_diffusion.h"
 
 #include <math.h>
 
@@ -21,10 +22,10 @@ void jd_slab_weights(const jd_dipole *dp, int c, double d, double *sample, doubl
      * its own (tau_c). On a slab the faces then give out
      *   lit: w_s + tau_c w_c = R,   far: w_c + tau_s w_s = T,
      * solved here, so that they give out exactly R and T. */
-    /* The sample's profile past d is diffusion's, unscaled (ref_diffusion.c:
-     * the exact albedo's excess stays within the window near the entry), so
-     * its share of the sample's whole light is tail_share / ratio. */
-    double tau_s = tail_share(s, zr, zv, d) / (dp->ratio[c] > 0 ? dp->ratio[c] : 1.0);
+    /* The sample's profile past d is diffusion's, unscaled (the exact
+     * albedo's excess stays in the window near the entry), so its share of
+     * the sample's whole light is the tail's times diffusion's share. */
+    double tau_s = tail_share(s, zr, zv, d) * jd_ref_diffusion_share(dp, c);
     double tau_c = tail_share(s, h, hv, d), det = 1.0 - tau_s * tau_c;
     double ws = (R - tau_c * T) / det, wc = (T - tau_s * R) / det;
     *sample = ws > 0 ? ws : 0.0;

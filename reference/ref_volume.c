@@ -119,9 +119,6 @@ jd_result jd_volume_init(jd_volume *v, const jd_volume_desc *d, jd_error *err)
         double st = d->dp->sigma_t[c];
         v->D[c] = st > 0 ? (float)(1.0 / (3.0 * st)) : 0.0f;
         v->zb[c] = (float)(2.0 * d->dp->A * v->D[c]);
-        /* Diffusion's own light: the exact albedo's excess leaves where the
-         * light entered (ref_render.c, exitance), as in the dipole's sum. */
-        v->scale[c] = 1.0f;
     }
     jd_result res = boundary(v, d, err);
     if (res) jd_volume_free(v);
@@ -400,5 +397,5 @@ void jd_volume_exitance(const jd_volume *v, const float x[3], const float n[3], 
                     for (int ch = 0; ch < 3; ch++) acc[ch] += w * v->phi[3 * (size_t)c + ch] / (fc->t + v->zb[ch]);
                 }
             }
-    for (int ch = 0; ch < 3; ch++) out[ch] = wsum > 0 ? v->scale[ch] * v->D[ch] * acc[ch] / wsum : 0.0f;
+    for (int ch = 0; ch < 3; ch++) out[ch] = wsum > 0 ? v->D[ch] * acc[ch] / wsum : 0.0f;
 }

@@ -59,7 +59,7 @@ typedef struct jd_volume {
         uint8_t axis;        /* the face's outward direction: -x, +x, -y, +y, -z, +z */
     } *faces;
     uint32_t num_faces;
-    float D[3], zb[3], scale[3]; /* diffusion constant, 2AD, the flux's scale (1) */
+    float D[3], zb[3];       /* diffusion constant, 2AD */
     int iterations;          /* the solve's, the largest of the three channels' */
     double residual;         /* relative, at the end */
     double lost;             /* the share of the sources' power that found no cell (parts thinner than one) */
