@@ -180,10 +180,17 @@ int jd_cmd_bench(int argc, char **argv)
     /* A board draws its edges as its display does under Mesa: from a 4x
      * multisampled EGL config (shaded once per pixel on a tile buffer) with
      * no pass after the frame, or, where the driver offers no such config
-     * (etnaviv, freedreno's a3xx), with the pass after the frame. */
+     * (etnaviv, freedreno's a3xx), with the pass after the frame. Where the
+     * tier draws the picture smaller and the driver cannot draw a texture
+     * with samples (vc4), the renderer is told the display's 4 samples, as
+     * the board's display gives them, and smooths that picture with the
+     * pass at its own size. */
     if (o.device && o.rdesc.antialias == JD_AA_AUTO) {
         const jd_board *b = jd_board_find(o.device);
-        o.rdesc.antialias = b && !b->multisampled ? JD_AA_POST : JD_AA_OFF;
+        if (b && b->multisampled && !b->texture_samples)
+            o.rdesc.target_samples = 4;
+        else
+            o.rdesc.antialias = b && !b->multisampled ? JD_AA_POST : JD_AA_OFF;
     }
 
     jd_session s;

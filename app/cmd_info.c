@@ -239,7 +239,7 @@ int jd_cmd_info(int argc, char **argv)
                "is enlarged)\n", c.max_samples);
     else
         printf("  EXT_multisampled_render_to_texture no (where the target is multisampled, a picture drawn smaller "
-               "keeps the edges it was drawn with)\n");
+               "is smoothed by the pass after the frame at its own size, then enlarged)\n");
     jd_platform_close(p);
     return 0;
 }

@@ -232,7 +232,9 @@ static int make_renderer(jd_session *s, jd_options *o, const char *cmd)
     jd_platform_max_size(s->platform, &rd.max_width, &rd.max_height);
     rd.rotation = o->rotation;
     rd.get_proc = jd_platform_gl_proc;
-    rd.target_samples = jd_platform_samples(s->platform);
+    /* bench --device says the board's display's samples, which the
+     * headless target stands in for; otherwise the target's own. */
+    if (!rd.target_samples) rd.target_samples = jd_platform_samples(s->platform);
     if (jd_renderer_create(&rd, &s->arena, &s->renderer, &err)) {
         fprintf(stderr, "jade %s: %s: %s\n", cmd, s->mesh_path, err.msg);
         return 0;
@@ -269,7 +271,15 @@ const char *jd_antialias_describe(const jd_renderer *r)
     jd_renderer_info info;
     jd_renderer_get_info(r, &info);
     int samples = info.target_samples;
-    if (info.post_antialias)
+    if (info.post_antialias && samples > 1 && info.tier)
+        /* The target's samples see only the enlarging pass's quad: the
+         * picture drawn smaller is smoothed at its own size first. */
+        snprintf(line, sizeof line, "anti-aliasing: a pass after the frame on the picture drawn at %dx%d%s, then "
+                 "enlarged (the target's %dx multisampling sees only the enlarging%s%s)", info.render_width,
+                 info.render_height, info.antialias_edges_only ? ", on the edges its test marks" : "", samples,
+                 info.samples_note ? "; " : ": no EXT_multisampled_render_to_texture to draw it with samples",
+                 info.samples_note ? info.samples_note : "");
+    else if (info.post_antialias)
         snprintf(line, sizeof line, "anti-aliasing: a pass after the frame (the target has no multisampling)%s",
                  info.antialias_edges_only ? ", on the edges its test marks" : "");
     else if (samples > 1 && info.tier && info.picture_samples > 1)
@@ -277,8 +287,9 @@ const char *jd_antialias_describe(const jd_renderer *r)
                  "(EXT_multisampled_render_to_texture), then enlarged", info.picture_samples, info.render_width,
                  info.render_height);
     else if (samples > 1 && info.tier)
-        /* Drawn smaller into a texture of one sample, then enlarged: the
-         * target's samples see only the enlarging pass's quad. */
+        /* Drawn smaller into a texture of one sample, with the pass after
+         * the frame turned off: the target's samples see only the
+         * enlarging pass's quad. */
         snprintf(line, sizeof line, "anti-aliasing: none on the picture drawn at %dx%d (the target's %dx multisampling "
                  "sees only the enlarging%s%s)", info.render_width, info.render_height, samples,
                  info.samples_note ? "; " : ": no EXT_multisampled_render_to_texture to draw it with samples",

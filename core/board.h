@@ -45,6 +45,12 @@ typedef struct jd_board {
      * Mesa 22.3.6's etnaviv_screen.c, fd3_screen.c). bench --device draws
      * as that display does. */
     int multisampled;
+    /* 1: the driver also draws a texture with those samples (its tile
+     * buffer's, EXT_multisampled_render_to_texture: lima, panfrost), so a
+     * picture the tier draws smaller and the GPU enlarges keeps them; 0
+     * (vc4): that picture has one sample, and the pass after the frame
+     * smooths it at its own size before it is enlarged. */
+    int texture_samples;
 } jd_board;
 
 extern const jd_board jd_boards[];

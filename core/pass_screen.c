@@ -430,8 +430,9 @@ static void smooth_box(jd_renderer *r, const target *src, const int box[4])
 /* The frame from `scene` into the platform's target, its edges smoothed,
  * enlarged where it was drawn smaller. Only the object's box on screen (its
  * corners projected, two pixels more) is filtered; the rest is background,
- * cleared. Drawn smaller and smoothed too (a target without samples), it
- * is smoothed at its own size first, into `aa_mid`, and that enlarged: the
+ * cleared. Drawn smaller and smoothed too (a target without samples, or a
+ * multisampled one whose samples the smaller picture could not be drawn
+ * with), it is smoothed at its own size first, into `aa_mid`, and that enlarged: the
  * pass after the frame costs its instructions per pixel it filters, and at
  * 960x540 for 1920x1080 that is a quarter of the pixels (Vivante GC2000,
  * 62 instructions: 15.2 ms of the 1080p frame against 3.8, before the pass
@@ -446,7 +447,7 @@ void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f)
     glDisable(GL_CULL_FACE);
     jdr_bind_quad(r);
     const target *src = &r->scene;
-    if (r->post_aa && scaled) {
+    if (r->aa_now && scaled) {
         /* The enlarging below reads its box's texels and their bilinear
          * neighbours: its box (two pixels round the object, a texel here)
          * and a texel more lie inside this one's three. */
@@ -460,7 +461,7 @@ void jdr_pass_final(jd_renderer *r, const jd_scene *s, const frame_params *f)
         if (object_box(r, &f->mvp, r->iw, r->ih, 3, box)) smooth_box(r, &r->scene, box);
         src = &r->aa_mid;
     }
-    int smooth_here = r->post_aa && !scaled;
+    int smooth_here = r->aa_now && !scaled;
     jdr_count_target(r, smooth_here ? "main-antialias" : "main-upscale", r->d.width, r->d.height);
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     glViewport(0, 0, r->d.width, r->d.height);

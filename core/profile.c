@@ -10,7 +10,9 @@ const jd_profile jd_profiles[] = {
     {"vc4", "Raspberry Pi 0-3 (VideoCore IV, Mesa vc4)", 2048, 2048, 2048, 2048, 256, 256, 8, 8, 8, 1, 0,
      "Mesa vc4_screen.c: 2D textures 2048, 8 varyings, samplers in both stages, fp32 (highp) shaders, "
      "8- and 16-bit index buffers only",
-     "4x multisampling in the EGL config (resolved in VideoCore IV's tile buffer)", 1, 0, "VideoCore IV"},
+     "4x multisampling in the EGL config (resolved in VideoCore IV's tile buffer); a picture the tier draws smaller "
+     "and the GPU enlarges has one sample (no EXT_multisampled_render_to_texture): the pass after the frame smooths "
+     "it at its own size", 1, 0, "VideoCore IV"},
     {"mali400", "Mali-400/450 (Utgard: ARM driver, Mesa lima)", 4096, 4096, 4096, 1024, 256, 256, 8, 8, 0, 0, 0,
      "ARM gles_config_m200.h / gles2_config_m200.h: 256 uniform vectors per stage, no vertex texture units, "
      "renderbuffers and viewports 4096, cube maps 1024; fragment shaders fp16 only; Mesa lima_screen.c: "

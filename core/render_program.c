@@ -371,7 +371,7 @@ static jd_result build_antialias(jd_renderer *r, jd_error *err)
         r->up_src = glGetUniformLocation(r->up_prog, "u_src");
         r->up_scale = glGetUniformLocation(r->up_prog, "u_uv_scale");
     }
-    if (!r->post_aa) return JD_OK;
+    if (!r->post_aa && !r->aa_small) return JD_OK;
     jd_result res = build(r, 3, "shaders_es2/quad.vert", "shaders_es2/antialias.frag",
                           "#define JD_PACK_HIGHP 0\n#define JD_DIAGONALS 1\n", quad_attribs, &r->aa_prog, err);
     if (res) return res;
@@ -529,7 +529,7 @@ jd_result jdr_build_programs(jd_renderer *r, jd_error *err)
             drop_group(r, g);
             say(r, "%s unavailable: %s", group_what[g], gerr[g].msg);
         }
-    if (!ok[GROUP_AA]) r->post_aa = r->may_scale = 0; /* frames at the full resolution, edges as they come */
+    if (!ok[GROUP_AA]) r->post_aa = r->aa_small = r->may_scale = 0; /* frames at the full resolution, edges as they come */
     int have[JD_MODE_COUNT] = {1, ok[GROUP_SH], ok[GROUP_SH] && ok[GROUP_SPREAD], ok[GROUP_FULL]};
     for (int m = 0; m < JD_MODE_COUNT; m++) {
         int shown = m;

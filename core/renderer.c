@@ -128,6 +128,13 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     const char *why;
     r->may_scale = (d->render_scale > 0.0f && d->render_scale < 1.0f) ||
                    (d->render_scale == 0.0f && tier_scale(r, d->max_width, d->max_height, &why) < 1.0f);
+    /* A picture drawn smaller and enlarged by the GPU: the target's samples
+     * see only the enlarging pass's quad. Where that picture cannot be drawn
+     * with samples of its own (no EXT_multisampled_render_to_texture, or the
+     * driver refuses them: VideoCore IV in a window or under legacy KMS),
+     * the pass after the frame smooths it at its own size before it is
+     * enlarged, as on a target without samples (jd_renderer_resize). */
+    r->aa_small = d->antialias == JD_AA_AUTO && samples > 1 && r->may_scale;
 
     int chunked = d->mesh->index_size == 4 && !d->caps->ext_element_index_uint;
     jd_result res = jd_mesh_build_proxy(d->mesh, d->proxy_cells, a, &r->proxy, err);
@@ -285,7 +292,7 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     if ((r->post_aa || r->may_scale) &&
         (res = jdr_make_target_ms(r, &r->scene, 1, 1, 1, 1, r->ms.samples, "frame before anti-aliasing", err)))
         goto fail;
-    if (r->post_aa && r->may_scale &&
+    if ((r->post_aa || r->aa_small) && r->may_scale &&
         (res = jdr_make_target(r, &r->aa_mid, 1, 1, 0, 1, "anti-aliased frame before enlarging", err)))
         goto fail;
     for (int i = 0; i < DIFF_TEXTURES; i++)
@@ -363,12 +370,17 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
     int scaled = width != r->d.width || height != r->d.height;
     if (r->scene.fbo)
         res = jdr_fit_target(r, &r->scene, via ? width : 0, via ? height : 0, 1, "frame before anti-aliasing", err);
+    /* The pass after the frame at this size: always where the target has
+     * no samples; where it has, on a picture drawn smaller with one (the
+     * samples it asked for refused, at start-up or at this size). */
+    r->aa_now = r->post_aa || (r->aa_small && scaled && r->scene.samples <= 1);
+    int mid = scaled && r->aa_now;
     if (!res && r->aa_mid.fbo)
-        res = jdr_fit_target(r, &r->aa_mid, scaled ? width : 0, scaled ? height : 0, 1,
+        res = jdr_fit_target(r, &r->aa_mid, mid ? width : 0, mid ? height : 0, 1,
                              "anti-aliased frame before enlarging", err);
     if (!res && r->aa_mid.fbo) { /* the frame's depth, the same size, while aa_mid is used */
         glBindFramebuffer(GL_FRAMEBUFFER, r->aa_mid.fbo);
-        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, scaled ? r->scene.depth : 0);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, mid ? r->scene.depth : 0);
         GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
         if (st != GL_FRAMEBUFFER_COMPLETE)
             res = jd_fail(err, JD_ERR_GL, "anti-aliased frame before enlarging with the frame's depth: framebuffer "
@@ -401,7 +413,7 @@ void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
     info->vertex_thickness = r->vertex_thickness;
     info->gpu_timer = r->tq.ok;
     info->target_samples = r->target_samples;
-    info->post_antialias = r->post_aa;
+    info->post_antialias = r->aa_now;
     info->antialias_edges_only = jdr_aa_marks(r);
     info->picture_samples = jdr_via_scene(r) ? r->scene.samples : r->target_samples;
     info->samples_note = r->ms_note[0] ? r->ms_note : NULL;

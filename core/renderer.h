@@ -22,8 +22,10 @@ typedef enum jd_precision { JD_PRECISION_AUTO = 0, JD_PRECISION_HIGHP, JD_PRECIS
 /* Edges: AUTO leaves them to a multisampled target (GL_SAMPLES > 1: an EGL
  * config with samples, free on tile-based GPUs; a picture drawn smaller for
  * it is drawn with the target's samples where the GPU has
- * EXT_multisampled_render_to_texture) and otherwise smooths them in a pass
- * after the frame (one full-size render target more). Where the target has
+ * EXT_multisampled_render_to_texture, and where it has not, smoothed by
+ * the pass below at its own size before it is enlarged) and otherwise
+ * smooths them in a pass after the frame (one full-size render target
+ * more). Where the target has
  * a depth buffer, or the picture is drawn smaller, the pass's own test
  * first marks the flat pixels in the depth buffer, and the pass then shades
  * only the edges (a few percent of the pixels), with the same picture. */
@@ -191,7 +193,7 @@ typedef struct jd_renderer_info {
     int vertex_thickness;     /* thickness read per vertex (vertex texture units), else per fragment */
     int gpu_timer;            /* GL_EXT_disjoint_timer_query: per-pass GPU times with timing on */
     int target_samples;       /* samples per pixel of the target (desc.target_samples, or GL_SAMPLES) */
-    int post_antialias;       /* the anti-aliasing pass runs after each frame */
+    int post_antialias;       /* at this size the anti-aliasing pass runs after each frame */
     /* At this size it shades only the pixels its test finds on an edge,
      * having marked the others in a depth buffer first (the target's, or
      * the frame's where it is drawn smaller): a few percent of them */

@@ -114,6 +114,8 @@ struct jd_renderer {
     int vertex_diffusion; /* the full mode's levels summed in the vertex stage */
     int target_samples;   /* samples of the target: desc.target_samples, or GL_SAMPLES */
     int post_aa;          /* frames go to `scene`, then through the anti-aliasing pass */
+    int aa_small;         /* the target has samples; a picture drawn smaller with none gets the pass at its size */
+    int aa_now;           /* the pass runs at this size: post_aa, or aa_small on a picture drawn smaller with one sample */
     int target_depth;     /* the target has a depth buffer: the pass after the frame can mark its flat pixels there */
     int may_scale;        /* render_scale may be under 1 at some size: `scene` and the upscale pass exist */
     int iw, ih;           /* the picture's passes' size: width x height, or less (render_scale) */
@@ -182,7 +184,7 @@ struct jd_renderer {
      * result, and the map the shading reads in place of the light map. */
     target soft_tmp, soft;
     target scene;         /* the frame before anti-aliasing or enlarging (post_aa, or drawn smaller) */
-    /* post_aa with the picture drawn smaller: `scene` anti-aliased at its
+    /* aa_now with the picture drawn smaller: `scene` anti-aliased at its
      * own size, which the enlarging then reads (one texel where unused).
      * Its depth is `scene`'s renderbuffer, attached while it is used: the
      * frame is drawn by then, and the pass marks its flat pixels there. */
@@ -325,7 +327,7 @@ static inline int jdr_via_scene(const jd_renderer *r)
  * drawn smaller (attached to `aa_mid`), else the target's, if it has one. */
 static inline int jdr_aa_marks(const jd_renderer *r)
 {
-    return r->post_aa && r->aa_mark_prog && (r->iw != r->d.width || r->ih != r->d.height || r->target_depth);
+    return r->aa_now && r->aa_mark_prog && (r->iw != r->d.width || r->ih != r->d.height || r->target_depth);
 }
 
 #endif
