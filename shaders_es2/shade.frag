@@ -58,13 +58,13 @@ uniform sampler2D u_spec;
 varying vec4 v_fresnel;      // the local part's light, u_local_x fl; Ft(v)/c
 varying vec4 v_half;         // w: fl, the highlight's side test
 #define JD_LIT_V v_half.w
-#define JD_FT_V v_fresnel.w
+#define JD_FT_V max(v_fresnel.w, 0.15)
 #else
 uniform vec3 u_local_x;      // light colour x Rd's weight on the Gaussians finer than a level texel x exposure
 varying vec2 v_fresnel;      // fl, Ft(v)/c
 varying vec3 v_half;
 #define JD_LIT_V v_fresnel.x
-#define JD_FT_V v_fresnel.y
+#define JD_FT_V max(v_fresnel.y, 0.15)
 #endif
 #endif
 #if JD_VERTEX_DIFFUSION

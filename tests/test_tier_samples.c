@@ -123,6 +123,41 @@ static int hard_steps(const uint8_t *p)
     return n;
 }
 
+/* Pixels 25 luma levels darker than all eight neighbours. */
+static int specks(const uint8_t *p)
+{
+    int n = 0;
+    for (int y = 1; y < H - 1; y++)
+        for (int x = 1; x < W - 1; x++) {
+            int c = jd_test_luma(p + 4 * (y * W + x)), darker = 1;
+            for (int dy = -1; dy <= 1 && darker; dy++)
+                for (int dx = -1; dx <= 1; dx++)
+                    if ((dx || dy) && jd_test_luma(p + 4 * ((y + dy) * W + x + dx)) < c + 25) darker = 0;
+            n += darker;
+        }
+    return n;
+}
+
+/* The default scene drawn by a renderer of `d` (the arena back at `mark`),
+ * resolved into `resolve` and read into dst; its info. 0 on a failure. */
+static int drawn(jd_arena *a, size_t mark, const jd_renderer_desc *d, const char *what, GLuint resolve, uint8_t *dst,
+                 jd_renderer_info *info)
+{
+    jd_error err = {0};
+    jd_arena_reset(a, mark);
+    jd_renderer *r = NULL;
+    jd_scene s;
+    jd_scene_defaults(&s, NULL);
+    CHECK(jd_renderer_create(d, a, &r, &err) == JD_OK, "%s: %s", what, err.msg);
+    if (!r) return 0;
+    jd_renderer_get_info(r, info);
+    int ok = jd_renderer_frame(r, &s, NULL, &err) == JD_OK;
+    CHECK(ok, "%s: %s", what, err.msg);
+    if (ok) read_resolved(d->target_fbo, resolve, dst);
+    jd_renderer_destroy(r);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
     const char *path = argc > 1 ? argv[1] : "assets/default.drc";
@@ -236,6 +271,22 @@ int main(int argc, char **argv)
           bytes[2], bytes[0]);
     CHECK(bytes[3] == bytes[2], "refused: counted as one sample (%zu against %zu)", bytes[3], bytes[2]);
 
+    /* Drawn at the target's own size with its 4 samples: a pixel on the
+     * outline whose centre lies off the triangle takes the varyings
+     * extrapolated there (GLES 2.0 has no centroid), and full's view
+     * Fresnel factor, steep at grazing, went below 0 there: dark specks
+     * along the outline (25 levels under all 8 neighbours), 17 on the
+     * default scene at 512x512 before the factor was held at 0.15. */
+    {
+        jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = ms, .width = W, .height = H,
+                              .render_scale = 1.0f, .get_proc = jd_platform_gl_proc};
+        jd_renderer_info info;
+        if (!drawn(&a, mark, &d, "specks", resolve, pic, &info)) return 1;
+        int n = specks(pic);
+        printf("full with the target's 4 samples: %d dark specks\n", n);
+        CHECK(n <= 2, "full with the target's samples: at most 2 dark specks at the outline (%d)", n);
+    }
+
     /* The driver's own extension, where it has one (an NVIDIA GPU; not
      * llvmpipe): the picture drawn smaller has its edges multisampled, so
      * fewer hard steps than drawn with one sample. */
@@ -243,24 +294,15 @@ int main(int argc, char **argv)
         printf("driver   no EXT_multisampled_render_to_texture here: its own samples not tried (hard steps with one "
                "sample: %d)\n", hard_steps(ref));
     } else {
-        jd_arena_reset(&a, mark);
         jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = ms, .width = W, .height = H,
                               .render_scale = 0.5f, .get_proc = jd_platform_gl_proc};
-        jd_renderer *r = NULL;
-        jd_scene s;
-        jd_scene_defaults(&s, NULL);
-        CHECK(jd_renderer_create(&d, &a, &r, &err) == JD_OK, "driver: %s", err.msg);
-        if (!r) return 1;
         jd_renderer_info info;
-        jd_renderer_get_info(r, &info);
+        if (!drawn(&a, mark, &d, "driver", resolve, pic, &info)) return 1;
         CHECK(info.picture_samples > 1, "driver: the picture drawn with samples (%d; %s)", info.picture_samples,
               info.samples_note ? info.samples_note : "no note");
-        CHECK(jd_renderer_frame(r, &s, NULL, &err) == JD_OK, "driver: %s", err.msg);
-        read_resolved(ms, resolve, pic);
         int one = hard_steps(ref), many = hard_steps(pic);
         printf("driver   %d samples: hard steps %d, with one sample %d\n", info.picture_samples, many, one);
         CHECK(one > 20 && many < one, "driver: fewer hard steps at the outline (%d against %d)", many, one);
-        jd_renderer_destroy(r);
     }
     jd_platform_close(P);
     return jd_check_summary("tier_samples");
