@@ -282,10 +282,16 @@ void main()
     gl_FragColor = vec4(sqrt(clamp(wide, 0.0, 1.0)), 1.0);
     return;
 #else
+    // The local part held at 0 or more: on a multisampled target a pixel
+    // of the outline whose centre lies off its triangle takes fl
+    // extrapolated there, below 0 where a triangle spans the terminator
+    // (fl is 0 at its unlit vertices), and its covered samples came out
+    // dark, as the view's factor's did (JD_FT_V). lima takes the max as
+    // its multiply's output modifier: no word.
 #if JD_WIDE_BUFFER
-    vec3 mo = u_amb_x + v_fresnel.xyz * vis + u_wide_x * wide;
+    vec3 mo = u_amb_x + max(v_fresnel.xyz * vis, 0.0) + u_wide_x * wide;
 #else
-    vec3 mo = u_amb_x + u_local_x * (v_fresnel.x * vis) + u_wide_x * wide;
+    vec3 mo = u_amb_x + u_local_x * max(v_fresnel.x * vis, 0.0) + u_wide_x * wide;
 #endif
 #if JD_ALBEDO
     // The view's Fresnel factor came with the colour (mesh.vert).

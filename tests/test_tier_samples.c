@@ -276,7 +276,9 @@ int main(int argc, char **argv)
      * extrapolated there (GLES 2.0 has no centroid), and full's view
      * Fresnel factor, steep at grazing, went below 0 there: dark specks
      * along the outline (25 levels under all 8 neighbours), 17 on the
-     * default scene at 512x512 before the factor was held at 0.15. */
+     * default scene at 512x512 before the factor was held at 0.15; with
+     * the local part's n.l Ft(l), 0 at unlit vertices, held at 0 or more
+     * too (2026-12-05) none at 256x256. */
     {
         jd_renderer_desc d = {.mesh = &mesh, .caps = &caps, .target_fbo = ms, .width = W, .height = H,
                               .render_scale = 1.0f, .get_proc = jd_platform_gl_proc};
@@ -284,7 +286,7 @@ int main(int argc, char **argv)
         if (!drawn(&a, mark, &d, "specks", resolve, pic, &info)) return 1;
         int n = specks(pic);
         printf("full with the target's 4 samples: %d dark specks\n", n);
-        CHECK(n <= 2, "full with the target's samples: at most 2 dark specks at the outline (%d)", n);
+        CHECK(n <= 1, "full with the target's samples: at most 1 dark speck at the outline (%d)", n);
     }
 
     /* The driver's own extension, where it has one (an NVIDIA GPU; not
