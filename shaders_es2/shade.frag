@@ -221,36 +221,34 @@ void main()
 #else
     vec3 h = normalize(u_light_dir + v);
 #endif
+#if JD_FULL
+    // The normal turns to the eye only where back faces are drawn: culled,
+    // a visible face's normal faces the eye but in the silhouette's last
+    // pixels (the normals follow the winding, mesh_load.c). The side test
+    // is the vertices' n.l (JD_LIT_V: > 0 where any vertex of the triangle
+    // is lit), a word fewer than the fragment's own on lima; where there
+    // is no table, the fragment's n.l, the turn and the eye's varying took
+    // VideoCore IV 19 of full's 124 instructions, GC3000 7 of 40, Adreno
+    // 3xx 14 of 119.
+    vec3 ns = v_normal;
+#if JD_TWO_SIDED
+    if (dot(ns, v) < 0.0) ns = -ns;
+#endif
 #ifdef JD_SPEC_TABLE
     // The highlight read from a table by the two dot products, where the
     // normal's normalising, the power and the side tests took lima 14 of
     // full's 33 instruction words (a chain of scalar steps: rsqrt, log2,
     // exp2 each a word of their own); from the table 27. n.h < 0 reads the
-    // table's first row, 0. The normal turns to the eye only where back
-    // faces are drawn: culled, a visible face's normal faces the eye but
-    // in the silhouette's last pixels (the normals follow the winding,
-    // mesh_load.c). The side test is the vertices' n.l (JD_LIT_V: > 0
-    // where any vertex of the triangle is lit), a word fewer than the
-    // fragment's own.
-    vec3 ns = v_normal;
-#if JD_TWO_SIDED
-    if (dot(ns, v) < 0.0) ns = -ns;
-#endif
-    // Read outside the test: inside it, lima branched round the read.
+    // table's first row, 0. Read outside the test: inside it, lima
+    // branched round the read.
     float st = texture2D(u_spec, vec2(dot(v_normal, v_normal) * JD_SPEC_SCALE.x + JD_SPEC_OFFSET.x,
                                       dot(ns, h) * JD_SPEC_SCALE.y + JD_SPEC_OFFSET.y)).r;
-    float spec = JD_LIT_V > 0.0 ? vis * st : 0.0;
-#elif JD_FULL
+#else
     // Where there is no table (the levels summed per vertex: VideoCore IV,
-    // Vivante GC3000 and GC7000L, Adreno 3xx), the same side test, the
-    // vertices' n.l, and the normal turned only where back faces are drawn:
-    // the fragment's n.l, the turn and the eye's varying took VideoCore IV
-    // 19 of full's 124 instructions, GC3000 7 of 40, Adreno 3xx 14 of 119.
-    vec3 ns = normalize(v_normal);
-#if JD_TWO_SIDED
-    if (dot(ns, v) < 0.0) ns = -ns;
+    // Vivante GC3000 and GC7000L, Adreno 3xx), (n.h / |n|)^shininess.
+    float st = pow(max(dot(normalize(ns), h), 0.0), u_shading.z);
 #endif
-    float spec = JD_LIT_V > 0.0 ? vis * pow(max(dot(ns, h), 0.0), u_shading.z) : 0.0;
+    float spec = JD_LIT_V > 0.0 ? vis * st : 0.0;
 #else
     float spec = ndl > 0.0 ? vis * pow(max(dot(n, h), 0.0), u_shading.z) : 0.0;
 #endif
