@@ -60,9 +60,12 @@ static int compile_colour_variants(jd_session *s, jd_options *o)
     rd.height = o->height;
     rd.max_width = o->width;
     rd.max_height = o->height;
-    /* The anti-aliasing pass is built here: the first renderer has none
-     * where the headless target is multisampled (lima, panfrost). */
-    rd.antialias = JD_AA_POST;
+    /* The first renderer's target and its samples (session.c), so that
+     * the pass after the frame, and the luma the picture's programs write
+     * for it or not, are the board's here too. */
+    rd.target_fbo = jd_platform_framebuffer(s->platform);
+    if (!rd.target_samples) rd.target_samples = jd_platform_samples(s->platform);
+    rd.get_proc = jd_platform_gl_proc;
     /* Twice: every vertex textured, then one not (a model whose materials
      * are partly untextured). */
     for (int partial = 0; partial < 2; partial++) {
@@ -93,6 +96,17 @@ static int compile_all(jd_options *o)
     o->rdesc.program_probe = JD_PROBE_OFF;
     /* A picture drawn smaller: its enlarging pass is built too. */
     o->rdesc.render_scale = 0.5f;
+    /* Its display's samples as the profile's boards give them (bench
+     * --device, core/board.h), so that the programs are the board's: where
+     * a board multisamples its display but draws no texture with those
+     * samples (VideoCore IV), the pass after the frame smooths only the
+     * picture drawn smaller, and the picture's programs write no luma for
+     * it (renderer.c, luma_alpha), which they do where the display has no
+     * samples (Vivante, Adreno 3xx: the shims' targets have none either).
+     * The pass itself is built either way (a picture drawn smaller). */
+    for (int i = 0; o->profile && i < jd_board_count; i++)
+        if (!strcmp(jd_boards[i].profile, o->profile) && jd_boards[i].multisampled && !jd_boards[i].texture_samples)
+            o->rdesc.target_samples = 4;
     jd_session s;
     /* The session passes the driver's messages on (the compiler's among
      * them) as they come, between this program's two lines. */

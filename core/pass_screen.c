@@ -303,7 +303,10 @@ void jdr_pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
         glScissor(0, 0, w, h);
     float bg[3];
     for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f)); /* display gamma 2, as the shader */
-    glClearColor(bg[0], bg[1], bg[2], 1);
+    /* Where the pass after reads each pixel's luma from the alpha
+     * (luma_alpha: JD_LUMA_ALPHA), the background's is cleared there too. */
+    int luma = r->luma_alpha && r->aa_now && via_scene;
+    glClearColor(bg[0], bg[1], bg[2], luma ? 0.299f * bg[0] + 0.587f * bg[1] + 0.114f * bg[2] : 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glScissor(0, 0, w, h);
     glEnable(GL_DEPTH_TEST);
@@ -315,9 +318,10 @@ void jdr_pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
         for (int i = 0; i < r->diff_levels; i++) jdr_counted_read(r, &r->diff_lv[i], 1);
     if (s->mode == JD_MODE_SINGLE || s->mode == JD_MODE_DUAL) jdr_counted_read(r, &r->irr[0], 6);
     if (s->mode == JD_MODE_DUAL) jdr_counted_read(r, &r->spread2, 1);
-    /* The shading's alpha is not the picture's: shade.frag writes what
-     * saved lima two instruction words, and the clear's 1 stays. */
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+    /* The shading's alpha is not the picture's: shade.frag writes the luma
+     * for the pass after (above), or else what saved lima two instruction
+     * words, and the clear's 1 stays. The pass writes 1. */
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, luma ? GL_TRUE : GL_FALSE);
     jdr_draw_mesh(r, &f->mvp);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
@@ -401,9 +405,9 @@ static void filter_quad(jd_renderer *r, GLuint prog, GLint src_loc, GLint scale_
 /* The pass after the frame over `box` of the bound framebuffer, reading
  * `src`. Where that framebuffer has a depth buffer (jdr_aa_marks: cleared
  * to 1 with the colour), the pass's own test runs first and alone
- * (antialias.frag with JD_AA_MARK: 24 of the whole pass's 59 instructions
- * on the Vivante GC2000, 72 of 156 on the Adreno 306, by the compiler
- * table): it copies a flat pixel and writes its depth, and discards an
+ * (antialias.frag with JD_AA_MARK: 17 of the whole pass's 63 instructions
+ * on the Vivante GC2000, 60 of 154 on the Adreno 306, by the compiler
+ * table, with each pixel's luma read from the frame's alpha): it copies a flat pixel and writes its depth, and discards an
  * edge pixel. The whole pass then runs under the depth test, which the GPU
  * makes before the fragment shader (early Z: Mesa's etnaviv and freedreno
  * a3xx allow it for a program that neither discards nor writes its depth),

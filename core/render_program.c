@@ -198,7 +198,7 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
              "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
              "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO %d\n#define JD_ALBEDO_MAP %d\n"
-             "#define JD_ALBEDO_PARTIAL %d\n#define JD_TWO_SIDED %d\n%s%s",
+             "#define JD_ALBEDO_PARTIAL %d\n#define JD_TWO_SIDED %d\n%s%s%s",
              r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
              m == JD_MODE_FULL && !r->vertex_diffusion, r->albedo, r->albedo && map, r->albedo && map && r->albedo_partial,
              r->d.no_cull, spec,
@@ -208,7 +208,9 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
               * which a GPU of 8 units (VideoCore IV) has no room for with
               * a colour texture; there full goes without it. */
              m == JD_MODE_FULL && r->vertex_diffusion && 8 + (r->albedo && map) > r->d.caps->max_texture_units
-                 ? "#define JD_NO_SLAB 1\n" : "");
+                 ? "#define JD_NO_SLAB 1\n" : "",
+             /* The frame's alpha: its luma, for the pass after it (renderer.c). */
+             r->luma_alpha ? "#define JD_LUMA_ALPHA 1\n" : "");
     /* v_view v_normal v_shadow [v_light] [v_trans v_dir] [v_fresnel v_half] [v_wide or v_screen] [v_col] [v_uv] */
     int varyings = translucent ? (r->vertex_thickness ? 5 : 6) : 3 + 3 * (m == JD_MODE_FULL);
     varyings += r->albedo + (r->albedo && map);
@@ -372,8 +374,11 @@ static jd_result build_antialias(jd_renderer *r, jd_error *err)
         r->up_scale = glGetUniformLocation(r->up_prog, "u_uv_scale");
     }
     if (!r->post_aa && !r->aa_small) return JD_OK;
-    jd_result res = build(r, 3, "shaders_es2/quad.vert", "shaders_es2/antialias.frag",
-                          "#define JD_PACK_HIGHP 0\n#define JD_DIAGONALS 1\n", quad_attribs, &r->aa_prog, err);
+    /* Its luma from the frame's alpha where the picture's programs write it there (renderer.c). */
+    const char *luma = r->luma_alpha ? "#define JD_LUMA_ALPHA 1\n" : "";
+    char def[128];
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_DIAGONALS 1\n%s", luma);
+    jd_result res = build(r, 3, "shaders_es2/quad.vert", "shaders_es2/antialias.frag", def, quad_attribs, &r->aa_prog, err);
     if (res) return res;
     r->aa_src = glGetUniformLocation(r->aa_prog, "u_src");
     r->aa_texel = glGetUniformLocation(r->aa_prog, "u_texel");
@@ -383,8 +388,8 @@ static jd_result build_antialias(jd_renderer *r, jd_error *err)
      * goes through `aa_mid` (its depth is the frame's) or the target has
      * a depth buffer of its own. */
     if (!r->may_scale && !r->target_depth) return JD_OK;
-    res = build(r, 3, "shaders_es2/quad.vert", "shaders_es2/antialias.frag",
-                "#define JD_PACK_HIGHP 0\n#define JD_DIAGONALS 1\n#define JD_AA_MARK 1\n", quad_attribs, &r->aa_mark_prog, err);
+    snprintf(def, sizeof def, "#define JD_PACK_HIGHP 0\n#define JD_DIAGONALS 1\n#define JD_AA_MARK 1\n%s", luma);
+    res = build(r, 3, "shaders_es2/quad.vert", "shaders_es2/antialias.frag", def, quad_attribs, &r->aa_mark_prog, err);
     if (res) return res;
     r->aa_mark_src = glGetUniformLocation(r->aa_mark_prog, "u_src");
     r->aa_mark_texel = glGetUniformLocation(r->aa_mark_prog, "u_texel");

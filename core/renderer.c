@@ -135,6 +135,14 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
      * the pass after the frame smooths it at its own size before it is
      * enlarged, as on a target without samples (jd_renderer_resize). */
     r->aa_small = d->antialias == JD_AA_AUTO && samples > 1 && r->may_scale;
+    /* Where the pass runs on every frame (a target without samples), the
+     * picture's programs write each pixel's luma to the frame's alpha for
+     * its edge test (shade.frag, antialias.frag): two instructions a shaded
+     * pixel for seven a tested one on the Vivante GC2000. Not where it runs
+     * only on a picture drawn smaller (VideoCore IV: the luma would cost
+     * its shading 7 of 105 instructions at the sizes it is not drawn
+     * smaller) or never (lima: 4 words of 26). */
+    r->luma_alpha = r->post_aa;
 
     int chunked = d->mesh->index_size == 4 && !d->caps->ext_element_index_uint;
     jd_result res = jd_mesh_build_proxy(d->mesh, d->proxy_cells, a, &r->proxy, err);

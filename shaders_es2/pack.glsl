@@ -86,3 +86,8 @@ float jd_unpack_signed(vec4 p)
     return (b.x / 255.0 + b.y / 65025.0) - (b.z / 255.0 + b.w / 65025.0);
 #endif
 }
+
+// The luma the pass after the frame tests its edges by (antialias.frag), of
+// display-encoded colours; shade.frag writes it to the frame's alpha where
+// that pass reads it there (JD_LUMA_ALPHA), pass_screen.c the clear's.
+#define JD_LUMA vec3(0.299, 0.587, 0.114)

@@ -349,9 +349,20 @@ void main()
     // 6e-5 come out up to half a display step darker. Above 1 the RGBA8
     // target clamps, as GLES 2.0 has every fixed-point colour buffer do
     // (an explicit min cost VideoCore IV and Adreno 4 instructions).
-    // Alpha: whatever is at hand, not 1, and masked off where this is drawn
-    // (pass_screen.c, jdr_pass_main): lima took two words to write the 1.
-    gl_FragColor = (col * inversesqrt(max(col * (0.15 * col + 1.0), 6.1035e-5))).xyzx;
+    // Alpha: where the pass after the frame runs on every frame (a target
+    // without samples: JD_LUMA_ALPHA, render_program.c), the colour's luma
+    // for its edge test (antialias.frag), which then reads one channel a
+    // neighbour where it took a dot product of three: 2 instructions here
+    // against 7 there on the Vivante GC2000, which tests every pixel of the
+    // object's box and shades a fifth to a half of them. Elsewhere whatever
+    // is at hand, not 1, and masked off where this is drawn (pass_screen.c,
+    // jdr_pass_main): lima took two words to write the 1, four the luma.
+    vec3 enc = col * inversesqrt(max(col * (0.15 * col + 1.0), 6.1035e-5));
+#ifdef JD_LUMA_ALPHA
+    gl_FragColor = vec4(enc, dot(enc, JD_LUMA));
+#else
+    gl_FragColor = enc.xyzx;
+#endif
 #endif
 #endif
 }

@@ -207,6 +207,14 @@ int main(int argc, char **argv)
     }
     CHECK(!memcmp(small[1], small[2], (size_t)W / 2 * H * 4),
           "resized to %dx%d: the picture of a renderer made at that size", W / 2, H);
+    /* The frame's alpha holds its luma for the pass's test (JD_LUMA_ALPHA):
+     * what reaches the target is opaque all the same (an X11 window with
+     * an alpha channel, a display plane that blends, a PNG). */
+    int see_through = 0;
+    for (int i = 0; i < W * H; i++)
+        for (int k = 0; k < 3; k++) /* small[1] and [2]: W/2 x H, the last drawn */
+            see_through += (pic[k][4 * i + 3] != 255) + (i < (k ? W / 2 * H : W * H) && small[k][4 * i + 3] != 255);
+    CHECK(see_through == 0, "the pictures are opaque (%d pixels' alpha under 255)", see_through);
     /* Hard steps: neighbours (right, below) whose luma differs by 64 or more. */
     int steps[2] = {0, 0}, flat = 0, flat_changed = 0;
     for (int y = 1; y < H - 1; y++)
