@@ -304,8 +304,9 @@ void jdr_pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
     float bg[3];
     for (int c = 0; c < 3; c++) bg[c] = sqrtf(fmaxf(s->background[c], 0.0f)); /* display gamma 2, as the shader */
     /* Where the pass after reads each pixel's luma from the alpha
-     * (luma_alpha: JD_LUMA_ALPHA), the background's is cleared there too. */
-    int luma = r->luma_alpha && r->aa_now && via_scene;
+     * (luma_alpha: the pass runs on every frame, through `scene`), the
+     * background's is cleared there too, by pack.glsl's JD_LUMA. */
+    int luma = r->luma_alpha;
     glClearColor(bg[0], bg[1], bg[2], luma ? 0.299f * bg[0] + 0.587f * bg[1] + 0.114f * bg[2] : 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glScissor(0, 0, w, h);
@@ -407,8 +408,8 @@ static void filter_quad(jd_renderer *r, GLuint prog, GLint src_loc, GLint scale_
  * to 1 with the colour), the pass's own test runs first and alone
  * (antialias.frag with JD_AA_MARK: 17 of the whole pass's 63 instructions
  * on the Vivante GC2000, 60 of 154 on the Adreno 306, by the compiler
- * table, with each pixel's luma read from the frame's alpha): it copies a flat pixel and writes its depth, and discards an
- * edge pixel. The whole pass then runs under the depth test, which the GPU
+ * table, each pixel's luma read from the frame's alpha): it copies a flat
+ * pixel and writes its depth, and discards an edge pixel. The whole pass then runs under the depth test, which the GPU
  * makes before the fragment shader (early Z: Mesa's etnaviv and freedreno
  * a3xx allow it for a program that neither discards nor writes its depth),
  * so it shades the edges only: at the close-up of the frame-cost table,

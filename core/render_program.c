@@ -534,7 +534,10 @@ jd_result jdr_build_programs(jd_renderer *r, jd_error *err)
             drop_group(r, g);
             say(r, "%s unavailable: %s", group_what[g], gerr[g].msg);
         }
-    if (!ok[GROUP_AA]) r->post_aa = r->aa_small = r->may_scale = 0; /* frames at the full resolution, edges as they come */
+    /* Frames at the full resolution, edges as they come, and the frame's
+     * alpha left alone (the picture's programs may write a luma there that
+     * no pass reads: pass_screen.c masks it). */
+    if (!ok[GROUP_AA]) r->post_aa = r->aa_small = r->may_scale = r->luma_alpha = 0;
     int have[JD_MODE_COUNT] = {1, ok[GROUP_SH], ok[GROUP_SH] && ok[GROUP_SPREAD], ok[GROUP_FULL]};
     for (int m = 0; m < JD_MODE_COUNT; m++) {
         int shown = m;

@@ -115,7 +115,7 @@ struct jd_renderer {
     int target_samples;   /* samples of the target: desc.target_samples, or GL_SAMPLES */
     int post_aa;          /* frames go to `scene`, then through the anti-aliasing pass */
     int aa_small;         /* the target has samples; a picture drawn smaller with none gets the pass at its size */
-    int luma_alpha;       /* post_aa at start-up: the frame's alpha holds its luma for the pass (JD_LUMA_ALPHA) */
+    int luma_alpha;       /* post_aa at start-up (0 with the pass unbuilt): the frame's alpha holds its luma for it */
     int aa_now;           /* the pass runs at this size: post_aa, or aa_small on a picture drawn smaller with one sample */
     int target_depth;     /* the target has a depth buffer: the pass after the frame can mark its flat pixels there */
     int may_scale;        /* render_scale may be under 1 at some size: `scene` and the upscale pass exist */
