@@ -152,17 +152,17 @@ static void diffuse_step(jd_renderer *r, const diff_prog *p, const target *from,
     if (box) /* a square of 2 x 2 taps a trip; the side is the program's JD_BOX_SIDE */
         glUniform1i(p->taps, box > 1 ? box * box / 4 : 1);
     else {
-        float w[2 * DIFF_TAPS + 1];
-        for (int i = 0; i <= 2 * taps; i++) w[i] = expf(-(float)((i - taps) * (i - taps)) / (2.0f * st * st));
+        float w[DIFF_TAPS + 1];
+        for (int i = 0; i <= taps; i++) w[i] = expf(-(float)(i * i) / (2.0f * st * st));
         glUniform1i(p->taps, taps);
-        glUniform1fv(p->w, 2 * taps + 1, w);
+        glUniform1fv(p->w, taps + 1, w);
     }
     glUniform1f(p->near, near);
     glBindTexture(GL_TEXTURE_2D, from->tex);
     jdr_draw_quad_into(r, to, what, from);
     jdr_counted_read(r, &r->light, 1); /* the reference depths */
     /* Built with its trips unrolled, the program's own count holds them all. */
-    jdr_counted_trips(r, p->trips ? 1 : box ? (box > 1 ? box * box / 4 : 1) : 2 * taps + 1);
+    jdr_counted_trips(r, p->trips ? 1 : box ? (box > 1 ? box * box / 4 : 1) : taps);
 }
 
 /* Level k's blur (both directions): its taps a side, their spacing in

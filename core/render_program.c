@@ -125,7 +125,10 @@ static void shade_locations(shade_prog *p)
  * where the loop cost 1719 cycles; Adreno 3xx 455 -> 257; Midgard 152 -> 70
  * bundles; Vivante 210 -> 121) but Utgard, whose six registers spill the
  * blur unrolled (lima 118 words and 9:29 spills:fills at 5 trips, where the
- * loop costs 150 words with none). Utgard's squares are unrolled: their
+ * loop costs 150 words with none; since the blur takes its taps in pairs, a
+ * trip each, unrolled 100 words and 3:12, the loop 120 and none). The
+ * blur's trips are its pairs: the centre tap comes before the loop.
+ * Utgard's squares are unrolled: their
  * loop spilled too (7:23, nearly all inside it: some 100 spill accesses a
  * fragment at 4 trips) and cost 310 words; unrolled 211 words, 32:81.
  * The squares (4 trips at the default sizes) stay a loop on Vivante
@@ -147,7 +150,7 @@ static int diffusion_trips(const jd_renderer *r, int first)
         int taps = jdr_diffusion_taps(r, 0, &step, &st);
         for (int k = 1; k < DIFF_TEXTURES; k++)
             if (jdr_diffusion_taps(r, k, &step, &st) != taps) return 0; /* one program serves every level */
-        trips = 2 * taps + 1;
+        trips = taps;
     }
     return trips <= 8 ? trips : 0;
 }

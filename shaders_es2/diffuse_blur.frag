@@ -18,7 +18,7 @@ uniform sampler2D u_ref;    // the light-depth map: each texel's own lit surface
 uniform vec2 u_ref_scale;   // the source's coordinates to the light map's (from gl_FragCoord lima took 5 words more)
 uniform vec2 u_step;        // texel offset between taps, along the blur direction
 uniform int u_taps;         // taps on each side of the centre for this level, 1..JD_TAPS
-uniform float u_w[2 * JD_TAPS + 1]; // the Gaussian's weights, tap 0 (-u_taps) to 2 u_taps
+uniform float u_w[JD_TAPS + 1]; // the Gaussian's weights by distance: the centre tap, then each pair u_w[k] at -k and +k taps
 uniform float u_near;       // light-depth units that still count as this texel's surface
 #if JD_BOX
 // JD_BOX_SIDE: light-map texels a side of the square one output texel
@@ -77,6 +77,18 @@ void tap(vec2 uv, float w, float zr, inout vec4 acc, inout float wsum)
     acc += vec4(wn.xy + wn.zw, wf.xy + wf.zw);
     wsum += w * step(min(t.y, t.w), 0.998);
 }
+
+// Two taps of one weight w, at uv - o and uv + o, their four parts worked
+// side by side in the vector lanes as square() works its texels: what
+// tap() does for one, the same sums in another order.
+void pair(vec2 uv, vec2 o, float w, float zr, inout vec4 acc, inout float wsum)
+{
+    vec4 t0 = texture2D(u_src, uv - o), t1 = texture2D(u_src, uv + o);
+    vec4 s = vec4(t0.xz, t1.xz), z = vec4(t0.yw, t1.yw);
+    vec4 ws = w * s * s, wn = ws * step(abs(z - zr), vec4(u_near)), wf = ws - wn;
+    acc += vec4(dot(wn, vec4(1.0)), dot(wn, z), dot(wf, vec4(1.0)), dot(wf, z));
+    wsum += w * dot(step(vec2(min(t0.y, t0.w), min(t1.y, t1.w)), vec2(0.998)), vec2(1.0));
+}
 #endif
 
 void main()
@@ -92,6 +104,14 @@ void main()
     // unrolls (32). Unrolled, every tap's texel and coordinates were live
     // at once and lima spilled 12:80 of its 6 vec4 registers (322
     // instructions); one tap per pass round the loop, 0 spills and 69.
+    // The blur takes its centre first and then a pair of taps a trip, the
+    // Gaussian's two at the same distance (one weight), their four parts in
+    // the vector lanes: lima's blur of 5 taps 149 words a fragment as one
+    // tap a trip (24 a trip, 7 of them the loop's own tests and branches),
+    // 120 as pairs, still without a spill.
+#if !JD_BOX
+    tap(v_uv, u_w[0], zr, acc, wsum);
+#endif
 #ifdef JD_UNROLL
     for (int i = 0; i < JD_UNROLL; i++) { // the device-compiler tool: the cost of one trip more
 #elif defined(JD_TRIPS)
@@ -103,8 +123,8 @@ void main()
     for (int i = 0; i <= 64; i++) {
         if (i >= u_taps) break;
 #else
-    for (int i = 0; i <= 64; i++) {
-        if (i > 2 * u_taps) break;
+    for (int i = 0; i < 64; i++) {
+        if (i >= u_taps) break;
 #endif
 #if JD_BOX
         // The first level's first step: every light-map texel under this
@@ -121,7 +141,7 @@ void main()
         vec2 o = 2.0 * vec2(fi - hb * row, row) - 0.5 * (float(JD_BOX_SIDE) - 1.0);
         square(v_uv + o * u_step, JD_BOX_SIDE > 1 ? 1.0 : 0.0, zr, acc, wsum);
 #else
-        tap(v_uv + (float(i) - float(u_taps)) * u_step, u_w[i], zr, acc, wsum);
+        pair(v_uv, float(i + 1) * u_step, u_w[i + 1], zr, acc, wsum);
 #endif
     }
     if (wsum <= 0.0) {
