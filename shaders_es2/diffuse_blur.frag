@@ -118,12 +118,10 @@ void main()
     // The renderer's trip count, constant, where the GPU runs the loop
     // shorter unrolled (every one but Utgard: render_program.c).
     for (int i = 0; i < JD_TRIPS; i++) {
-#elif JD_BOX
-    // At most 65 squares of 2 x 2: renderer.c refuses a box over 16 a side.
-    for (int i = 0; i <= 64; i++) {
-        if (i >= u_taps) break;
 #else
-    for (int i = 0; i < 64; i++) {
+    // At most 65 squares of 2 x 2 (renderer.c refuses a box over 16 a
+    // side), or JD_TAPS pairs of taps.
+    for (int i = 0; i <= 64; i++) {
         if (i >= u_taps) break;
 #endif
 #if JD_BOX
