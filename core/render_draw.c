@@ -12,8 +12,10 @@ void jdr_bind_mesh(GLuint vbo, GLuint ibo)
     glEnableVertexAttribArray(0);
     glEnableVertexAttribArray(1);
     glEnableVertexAttribArray(4);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN, (const void *)0);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN, (const void *)12);
+    /* The position's fourth float is the part's thickness (render_target.c):
+     * programs that declare a vec3 position drop it. */
+    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN, (const void *)0);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN, (const void *)16);
     /* The light between parts' transfer, last in the vertex (render_target.c). */
     glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN,
                           (const void *)(JDR_STRIDE_PLAIN - JDR_BOUNCE_BYTES));
@@ -22,14 +24,14 @@ void jdr_bind_mesh(GLuint vbo, GLuint ibo)
 void jdr_mesh_attributes(const jd_renderer *r, size_t at)
 {
     GLsizei st = (GLsizei)r->vstride;
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, st, (const void *)at);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, st, (const void *)(at + 12));
+    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, st, (const void *)at);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, st, (const void *)(at + 16));
     glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, st, (const void *)(at + (size_t)st - JDR_BOUNCE_BYTES));
     if (!r->albedo) return;
     glEnableVertexAttribArray(2);
     glEnableVertexAttribArray(3);
-    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, st, (const void *)(at + 24));
-    glVertexAttribPointer(3, 4, GL_UNSIGNED_BYTE, GL_TRUE, st, (const void *)(at + 32));
+    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, st, (const void *)(at + 28));
+    glVertexAttribPointer(3, 4, GL_UNSIGNED_BYTE, GL_TRUE, st, (const void *)(at + 36));
 }
 
 void jdr_bind_quad(const jd_renderer *r)

@@ -187,14 +187,16 @@ void jdr_free_target(target *t)
 }
 
 /* One vertex as uploaded: the position centred and scaled to the unit
- * sphere (coordinates small for fp16 varyings), the normal ((0, 0, 1) for
- * one of no length) of length 1 + t / 2 where the part is t thick under the
- * vertex (thick: in the mesh's units, scaled with the positions, at most 2,
- * the sphere's width; NULL: length 1): the thickness rides in the normal,
- * which the vertex stages normalise, and no program's vertex layout grows
- * (mesh_thickness.c). For a mesh with colours its texture coordinates and
- * colour (4 bytes, normalised). Last, the light between parts' transfer
- * (bounce: JD_BOUNCE_TERMS a vertex; NULL: none). */
+ * sphere (coordinates small for fp16 varyings) and, as its fourth float,
+ * the part's thickness t under the vertex (thick: in the mesh's units,
+ * scaled with the positions, at most 2, the sphere's width; NULL: 0;
+ * mesh_thickness.c); the unit normal ((0, 0, 1) for one of no length). The
+ * thickness rode in the normal's length until 2026-12-05, which every
+ * vertex stage then normalised: 4 bytes a vertex fewer, but lima's full
+ * vertex stage took 67 words, 60 without (a square root, a reciprocal and
+ * eight operations a vertex). For a mesh with colours its texture
+ * coordinates and colour (4 bytes, normalised). Last, the light between
+ * parts' transfer (bounce: JD_BOUNCE_TERMS a vertex; NULL: none). */
 _Static_assert(JDR_BOUNCE_BYTES == JD_BOUNCE_TERMS * sizeof(float), "the transfer's bytes");
 
 static void pack_vertex(uint8_t *o, const jd_mesh *m, const float *thick, const float *bounce, uint32_t i, jd_vec3 c,
@@ -202,24 +204,22 @@ static void pack_vertex(uint8_t *o, const jd_mesh *m, const float *thick, const 
 {
     const float *p = m->positions + 3 * (size_t)i, *n = m->normals + 3 * (size_t)i;
     jd_vec3 u = jd_unit_normal(n);
-    if (thick) {
-        float t = thick[i] * inv_r, k = 1.0f + 0.5f * (t < 2.0f ? t : 2.0f);
-        u.x *= k, u.y *= k, u.z *= k;
-    }
-    float v[8] = {(p[0] - c.x) * inv_r, (p[1] - c.y) * inv_r, (p[2] - c.z) * inv_r, u.x, u.y, u.z, 0.0f, 0.0f};
+    float t = thick ? thick[i] * inv_r : 0.0f;
+    float v[9] = {(p[0] - c.x) * inv_r, (p[1] - c.y) * inv_r, (p[2] - c.z) * inv_r, t < 2.0f ? t : 2.0f, u.x, u.y, u.z,
+                  0.0f, 0.0f};
     float b[JD_BOUNCE_TERMS] = {0};
     if (bounce) memcpy(b, bounce + JD_BOUNCE_TERMS * (size_t)i, sizeof b);
     memcpy(o + jdr_vertex_stride(m) - JDR_BOUNCE_BYTES, b, JDR_BOUNCE_BYTES);
     if (!m->colors) {
-        memcpy(o, v, 24);
+        memcpy(o, v, 28);
         return;
     }
     if (m->uvs) {
-        v[6] = m->uvs[2 * (size_t)i];
-        v[7] = m->uvs[2 * (size_t)i + 1];
+        v[7] = m->uvs[2 * (size_t)i];
+        v[8] = m->uvs[2 * (size_t)i + 1];
     }
-    memcpy(o, v, 32);
-    memcpy(o + 32, m->colors + 4 * (size_t)i, 4);
+    memcpy(o, v, 36);
+    memcpy(o + 36, m->colors + 4 * (size_t)i, 4);
 }
 
 int jdr_vertex_stride(const jd_mesh *m) { return m->colors ? JDR_STRIDE_COLOUR : JDR_STRIDE_PLAIN; }

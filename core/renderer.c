@@ -176,7 +176,7 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     while (glGetError() != GL_NO_ERROR) {}
     /* The part's thickness under each vertex of the mesh and of the light
      * map's proxy (whose vertices the Mali-400 path's levels are summed
-     * at), riding in their normals' length (render_target.c): full's light
+     * at), riding in their positions' w (render_target.c): full's light
      * on thin parts (pass_light.c, update_slab). A ray a vertex on the proxy,
      * and on the mesh up to 2^17 triangles; past that (a grid of at most 64
      * cells a side holds dozens a cell, and the rays took seconds at

@@ -247,11 +247,12 @@ typedef struct frame_params {
 } frame_params;
 
 /* render_target.c */
-/* Bytes per uploaded vertex: position and normal; with colours, texture
- * coordinates and the colour's 4 bytes too; last, the light between parts'
- * transfer (4 floats, mesh_bounce.h). */
-#define JDR_STRIDE_PLAIN 40
-#define JDR_STRIDE_COLOUR 52
+/* Bytes per uploaded vertex: position with the part's thickness as its
+ * fourth float, and the unit normal; with colours, texture coordinates and
+ * the colour's 4 bytes too; last, the light between parts' transfer (4
+ * floats, mesh_bounce.h). */
+#define JDR_STRIDE_PLAIN 44
+#define JDR_STRIDE_COLOUR 56
 #define JDR_BOUNCE_BYTES 16
 int jdr_vertex_stride(const jd_mesh *m);
 jd_result jdr_upload_albedo(jd_renderer *r, const jd_mesh *m, jd_arena *a, jd_error *err);

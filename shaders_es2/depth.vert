@@ -16,8 +16,6 @@ void main()
     // irradiance per unit area of surface. At most 21/20 (the fit's
     // u_fresnel.x is at most 1.049 over eta 1..3): stored
     // over that, as a square root, so dim light keeps its precision in 8 bits.
-    // The proxy's normal carries the part's thickness in its length
-    // (render_target.c): normalised here.
-    float ndl = max(dot(normalize(a_normal), u_light_dir), 0.0);
+    float ndl = max(dot(a_normal, u_light_dir), 0.0);
     v_irr = sqrt(clamp(ndl * jd_fresnel_tc(ndl, u_fresnel) * (20.0 / 21.0), 0.0, 1.0));
 }

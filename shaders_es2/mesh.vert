@@ -2,8 +2,8 @@
 // Shared vertex stage of the shading passes. The parallax-corrected
 // refraction direction is found here, per vertex; the fragment stage looks
 // the SH irradiance up along it in the map the reduction left on the GPU.
-attribute vec3 a_position;
-attribute vec3 a_normal;
+attribute vec4 a_position; // w: the part's thickness under the vertex (render_target.c)
+attribute vec3 a_normal;   // unit length
 uniform mat4 u_mvp;
 // The light's view to light-map coordinates: xy in the map and depth in
 // [0, 1] (its clip space with the 0.5 scale and offset folded in on the
@@ -143,10 +143,11 @@ void main()
     v_col = vec4(a_color.rgb * a_color.rgb * u_albedo_norm, a_color.a);
 #endif
 #endif
-    // The normal's length carries the part's thickness under the vertex,
-    // t = 2 (|n| - 1) (render_target.c, mesh_thickness.c).
-    vec3 an = normalize(a_normal);
-    float thick = 2.0 * (length(a_normal) - 1.0);
+    // The part's thickness under the vertex rides in the position's w
+    // (render_target.c, mesh_thickness.c).
+    vec3 pos = a_position.xyz;
+    vec3 an = a_normal;
+    float thick = a_position.w;
 #if JD_FULL
     // On a lit face, the share of the light that a part this thick keeps
     // (its slab's R(t) of the half-space's, pass_light.c: 1 - a 2^(-b t),
@@ -169,7 +170,7 @@ void main()
     // Halved (the light between parts by its uniform: pass_screen.c): the
     // buffer holds sqrt(wide / 2) (shade.frag), and the halving here is a
     // multiply fewer there.
-    float dv = dot(an, u_eye - a_position), dl = dot(an, u_light_dir);
+    float dv = dot(an, u_eye - pos), dl = dot(an, u_light_dir);
     float lit_face = step(0.0, dv * dl);
     v_keep = 0.5 - (0.5 * lit_face) * lose;
     v_bounce = bounce;
@@ -178,11 +179,11 @@ void main()
     // n.l as the face is seen, for the summing pass's ramp (shade.frag).
     v_pos = vec2(dv < 0.0 ? -dl : dl, 0.5 * thick);
 #else
-    vec3 vf = normalize(u_eye - a_position);
+    vec3 vf = normalize(u_eye - pos);
     v_view = vf;
     v_normal = an;
 #endif
-    gl_Position = u_mvp * vec4(a_position, 1.0);
+    gl_Position = u_mvp * vec4(pos, 1.0);
 #if JD_ALBEDO_MAP
     // The entry's mip bias (shade.frag): the radius in pixels here, nearer
     // or further than the object's centre, and less the slant. The GPU
@@ -192,7 +193,7 @@ void main()
     // 4.3 levels here, at |n.v| 0.05).
     v_uv = vec3(a_uv, log2(max(max(abs(dot(an, vf)), 0.05) * u_albedo_reach / gl_Position.w, 1e-6)));
 #endif
-    vec4 sp = u_light_tex * vec4(a_position, 1.0);
+    vec4 sp = u_light_tex * vec4(pos, 1.0);
     v_shadow = sp.xyzz;
 #if JD_FULL
     // full's shadow test takes the depth as its exponential's exponent
@@ -228,7 +229,7 @@ void main()
 #endif
 #if JD_FULL && JD_VERTEX_DIFFUSION
     vec3 nv = an;
-    if (dot(nv, u_eye - a_position) < 0.0) nv = -nv;
+    if (dot(nv, u_eye - pos) < 0.0) nv = -nv;
     float ndl = dot(nv, u_light_dir_v);
     // The shadow test without a branch round it: jd_lit_ramp takes it only
     // where ndl > 0 (VideoCore IV's vertex stage 330 -> 286 instructions,
@@ -252,7 +253,7 @@ void main()
     if (dot(n, view) < 0.0) n = -n;
     // Thickness is read at a point moved inward, so the surface does not
     // measure itself.
-    vec3 light = (u_light_tex * vec4(a_position - u_inset * n, 1.0)).xyz;
+    vec3 light = (u_light_tex * vec4(pos - u_inset * n, 1.0)).xyz;
     vec3 r = refract(-view, n, u_inv_eta);
     if (dot(r, r) < 1e-6) r = -n;
     // Box projection: where the refracted ray leaves the bounding cube, seen
@@ -261,11 +262,11 @@ void main()
     r = vec3(r.x < 0.0 ? min(r.x, -1e-4) : max(r.x, 1e-4),
              r.y < 0.0 ? min(r.y, -1e-4) : max(r.y, 1e-4),
              r.z < 0.0 ? min(r.z, -1e-4) : max(r.z, 1e-4));
-    vec3 s1 = (u_box_max - a_position) / r;
-    vec3 s2 = (u_box_min - a_position) / r;
+    vec3 s1 = (u_box_max - pos) / r;
+    vec3 s2 = (u_box_min - pos) / r;
     vec3 sf = max(s1, s2);
     float s = min(min(sf.x, sf.y), sf.z);
-    v_dir = a_position + s * r; // the lookup normalises
+    v_dir = pos + s * r; // the lookup normalises
     float x = clamp(1.0 - dot(n, view), 0.0, 1.0);
     float x2 = x * x;
     float ft = 1.0 - (u_f0 + (1.0 - u_f0) * x2 * x2 * x); // Fresnel transmittance
