@@ -353,6 +353,12 @@ static jd_result build_full(jd_renderer *r, jd_error *err)
                          err)))
             return res;
         shade_locations(&r->wide_prog);
+        if ((res = build(r, 3, "shaders_es2/quad.vert", "shaders_es2/wide_fill.frag",
+                         "#define JD_PACK_HIGHP 0\n#define JD_DIAGONALS 1\n", quad_attribs, &r->fill_prog, err)))
+            return res;
+        r->fill_src = glGetUniformLocation(r->fill_prog, "u_src");
+        r->fill_texel = glGetUniformLocation(r->fill_prog, "u_texel");
+        r->fill_scale = glGetUniformLocation(r->fill_prog, "u_uv_scale");
     }
     if ((res = build_diffusion(r, 1, &r->diff_first, err)) || (res = build_diffusion(r, 0, &r->diff_next, err)))
         return res;
@@ -425,7 +431,7 @@ static int group_programs(jd_renderer *r, int g, GLuint **out)
         break;
     case GROUP_FULL:
         out[n++] = &r->shade[JD_MODE_FULL].id; out[n++] = &r->wide_prog.id; out[n++] = &r->diff_first.id;
-        out[n++] = &r->diff_next.id; out[n++] = &r->soft_prog;
+        out[n++] = &r->diff_next.id; out[n++] = &r->soft_prog; out[n++] = &r->fill_prog;
         break;
     default: out[n++] = &r->aa_prog; out[n++] = &r->up_prog; out[n++] = &r->aa_mark_prog; break;
     }

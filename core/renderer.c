@@ -281,9 +281,11 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
                                err)) ||
         (res = jdr_make_target(r, &r->soft, d->light_map_size / 2, d->light_map_size / 2, 0, 1, "soft shadow", err)))
         goto fail;
-    /* These two follow the picture's size: jd_renderer_resize makes their
+    /* These follow the picture's size: jd_renderer_resize makes their
      * storage (jdr_fit_target). */
-    if (!r->vertex_diffusion && (res = jdr_make_target(r, &r->wide, 1, 1, 1, 1, "full's levels", err))) goto fail;
+    if (!r->vertex_diffusion && ((res = jdr_make_target(r, &r->wide, 1, 1, 1, 1, "full's levels", err)) ||
+                                 (res = jdr_make_target(r, &r->wide_fill, 1, 1, 0, 1, "full's levels filled", err))))
+        goto fail;
     /* A picture drawn smaller and enlarged by the GPU: the target's samples
      * would see only the enlarging pass's quad, and the edges be as drawn at
      * the smaller size. Where the GPU draws a texture with samples in its
@@ -324,8 +326,8 @@ void jd_renderer_destroy(jd_renderer *r)
 {
     if (!r) return;
     target *ts[] = {&r->light,   &r->atlas,   &r->sh1,      &r->sh_mid_t, &r->sh2,   &r->sh3, &r->spread0,
-                    &r->spread_tmp, &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->aa_mid, &r->wide, &r->soft_tmp,
-                    &r->soft};
+                    &r->spread_tmp, &r->spread1, &r->spread2, &r->diff_tmp, &r->scene, &r->aa_mid, &r->wide, &r->wide_fill,
+                    &r->soft_tmp, &r->soft};
     for (size_t i = 0; i < sizeof ts / sizeof ts[0]; i++) jdr_free_target(ts[i]);
     for (int i = 0; i < DIFF_TEXTURES; i++) jdr_free_target(&r->diff_lv[i]);
     for (int i = 0; i < 6; i++) jdr_free_target(&r->irr[i]); /* the cube's texture goes with the first */
@@ -341,7 +343,7 @@ void jd_renderer_destroy(jd_renderer *r)
     glDeleteProgram(r->wide_prog.id);
     GLuint progs[] = {r->count_prog, r->up_prog, r->a0.id, r->depth_prog, r->capture_prog, r->project_prog, r->reduce_mid_prog, r->reduce_faces_prog,
                       r->reduce_final_prog, r->irr_prog, r->blur_prog, r->combine_prog, r->diff_first.id, r->diff_next.id, r->aa_prog,
-                      r->aa_mark_prog};
+                      r->aa_mark_prog, r->soft_prog, r->fill_prog};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) glDeleteProgram(progs[i]);
     memset(r, 0, sizeof *r);
 }
@@ -395,6 +397,8 @@ jd_result jd_renderer_resize(jd_renderer *r, int width, int height, jd_error *er
                           "%dx%d incomplete (0x%x)", r->aa_mid.tw, r->aa_mid.th, st);
     }
     if (!res && r->wide.fbo) res = jdr_fit_target(r, &r->wide, (width + 1) / 2, (height + 1) / 2, 1, "full's levels", err);
+    if (!res && r->wide_fill.fbo)
+        res = jdr_fit_target(r, &r->wide_fill, (width + 1) / 2, (height + 1) / 2, 1, "full's levels filled", err);
     glBindFramebuffer(GL_FRAMEBUFFER, r->d.target_fbo);
     if (res) return res;
     r->scene.w = width;

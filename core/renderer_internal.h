@@ -167,6 +167,8 @@ struct jd_renderer {
     diff_prog diff_first, diff_next; /* level 1 from the light map; the others */
     GLuint soft_prog;
     GLint soft_src, soft_step, soft_c, soft_scale;
+    GLuint fill_prog;     /* the levels' sum with its outline filled (wide_fill.frag) */
+    GLint fill_src, fill_texel, fill_scale;
     GLuint aa_prog, up_prog;
     GLint aa_src, aa_texel, aa_scale, up_src, up_scale;
     GLuint aa_mark_prog; /* the pass after the frame's test alone (JD_AA_MARK): flat pixels copied, edges left */
@@ -191,6 +193,7 @@ struct jd_renderer {
      * frame is drawn by then, and the pass marks its flat pixels there. */
     target aa_mid;
     target wide;          /* full's levels summed at a lower resolution (without vertex diffusion) */
+    target wide_fill;     /* the same with its outline filled, which the picture reads */
     /* The object's extent on screen in NDC (x0, y0, x1, y1) for the pass
      * after the frame, and the transform it was found for. */
     float extent[4], extent_mvp[16];
