@@ -130,7 +130,9 @@ static void shade_locations(shade_prog *p)
  * blur's trips are its pairs: the centre tap comes before the loop.
  * Utgard's squares are unrolled: their
  * loop spilled too (7:23, nearly all inside it: some 100 spill accesses a
- * fragment at 4 trips) and cost 310 words; unrolled 211 words, 32:81.
+ * fragment at 4 trips) and cost 310 words; unrolled 211 words, 32:81, and
+ * 175 and 16:37 since their texels' coordinates come from the vertex
+ * stage (JD_BOX_COORDS, below).
  * The squares (4 trips at the default sizes) stay a loop on Vivante
  * GC400-GC2000 too: unrolled at 8 trips (two texels a trip) they passed
  * its 256-instruction limit, and at 4 (GC3000's build: 198) would leave
@@ -157,17 +159,22 @@ static int diffusion_trips(const jd_renderer *r, int first)
 
 static jd_result build_diffusion(jd_renderer *r, int first, diff_prog *p, jd_error *err)
 {
-    char def[160];
+    char def[200];
     p->trips = diffusion_trips(r, first);
     /* The first step gathers light-map texels in squares (JD_BOX). */
     snprintf(def, sizeof def,
              "#define JD_PACK_HIGHP %d\n#define JD_TAPS %d\n#define JD_FIRST %d\n#define JD_BOX %d\n#define JD_BOX_SIDE %d\n",
              r->highp, DIFF_TAPS, first, first, r->d.light_map_size / r->d.diffusion_size);
+    /* The first step's squares unrolled, four at most: their texels'
+     * coordinates come from the vertex stage, two a varying (eight, every
+     * ES 2.0 GPU's least), where lima spilled those it made (quad.vert). */
+    int coords = first && p->trips && p->trips <= 4;
     if (p->trips) {
         size_t n = strlen(def);
-        snprintf(def + n, sizeof def - n, "#define JD_TRIPS %d\n", p->trips);
+        snprintf(def + n, sizeof def - n, "#define JD_TRIPS %d\n%s", p->trips, coords ? "#define JD_BOX_COORDS 1\n" : "");
     }
-    jd_result res = build(r, 1, "shaders_es2/quad.vert", "shaders_es2/diffuse_blur.frag", def, quad_attribs, &p->id, err);
+    jd_result res = build(r, coords ? 2 * p->trips : 1, "shaders_es2/quad.vert", "shaders_es2/diffuse_blur.frag", def,
+                          quad_attribs, &p->id, err);
     if (res) return res;
     p->src = glGetUniformLocation(p->id, "u_src");
     p->ref = glGetUniformLocation(p->id, "u_ref");

@@ -38,17 +38,15 @@ vec2 part(vec2 a, float wsum, float other)
 }
 
 #if JD_FIRST
-// Four light-map texels, a square of 2 x 2 from uv, into the near and far
-// sums, (S, S z) of each part (the other three weigh `more`: none where a
-// square of one is asked for). The four are worked side by side in the
-// vector lanes: one texel at a time, as the later steps' tap(), lima
-// spilled 8:22 at four a trip.
-void square(vec2 uv, float more, float zr, inout vec4 acc, inout float wsum)
+// Four light-map texels, a square of 2 x 2 (t0 at its origin, t1 across,
+// t2 up, t3 both), into the near and far sums, (S, S z) of each part (the
+// other three weigh `more`: none where a square of one is asked for). The
+// four are worked side by side in the vector lanes: one texel at a time,
+// as the later steps' tap(), lima spilled 8:22 at four a trip.
+void square(vec4 t0, vec4 t1, vec4 t2, vec4 t3, float more, float zr, inout vec4 acc, inout float wsum)
 {
-    vec4 t0 = texture2D(u_src, uv), t1 = texture2D(u_src, uv + vec2(u_step.x, 0.0));
     vec4 za = vec4(t0.xy, t1.xy);
     vec2 a01 = vec2(t0.a, t1.a);
-    vec4 t2 = texture2D(u_src, uv + vec2(0.0, u_step.y)), t3 = texture2D(u_src, uv + u_step);
     vec4 zb = vec4(t2.xy, t3.xy);
     vec4 z = vec4(za.xz, zb.xz) + vec4(za.yw, zb.yw) * jd_bytes.y;
     vec4 a = vec4(a01, t2.a, t3.a);
@@ -57,6 +55,16 @@ void square(vec2 uv, float more, float zr, inout vec4 acc, inout float wsum)
     acc += vec4(dot(wn, vec4(1.0)), dot(wn, z), dot(wf, vec4(1.0)), dot(wf, z));
     wsum += dot(lit, vec4(1.0));
 }
+#ifdef JD_BOX_COORDS
+// Every texel's coordinates from the vertex stage (quad.vert): the first
+// step's squares unrolled, at most four of them (render_program.c). Made
+// per fragment, the sixteen coordinates and the offsets they came from
+// were what lima spilled (210 words, 32:81 spills:fills; from here 175,
+// 16:37). v_uv, the squares' centre, is not among the varyings (eight at
+// most on Mali-400 and VideoCore IV): the middle of the first and last
+// texels stands in for it.
+varying vec4 v_sq[2 * JD_TRIPS];
+#endif
 #else
 // One tap of weight w into the near and far sums: (w S, w S z) of each
 // part, written as whole-vector operations (lima spilled where NIR built
@@ -93,7 +101,13 @@ void pair(vec2 uv, vec2 o, float w, float zr, inout vec4 acc, inout float wsum)
 
 void main()
 {
+#if defined(JD_BOX_COORDS) && JD_BOX_SIDE > 1
+    float zr = jd_depth(texture2D(u_ref, (v_sq[0].xy + v_sq[2 * JD_TRIPS - 1].zw) * 0.5 * u_ref_scale));
+#elif defined(JD_BOX_COORDS)
+    float zr = jd_depth(texture2D(u_ref, v_sq[0].xy * u_ref_scale));
+#else
     float zr = jd_depth(texture2D(u_ref, v_uv * u_ref_scale));
+#endif
     // Normalised convolution on the light's coverage: near the object's
     // outline as the light sees it there is lit surface on one side and
     // nothing (not dark surface) on the other.
@@ -134,10 +148,17 @@ void main()
         // instruction words a fragment, the four in vector lanes 326 (with
         // 6 spills, which the count holds); the side a constant, 310 (no
         // reciprocal of it a trip).
+#ifdef JD_BOX_COORDS
+        vec4 c01 = v_sq[2 * i], c23 = v_sq[2 * i + 1];
+#else
         const float hb = 0.5 * float(JD_BOX_SIDE);
         float fi = float(i), row = floor(fi * (1.0 / hb));
         vec2 o = 2.0 * vec2(fi - hb * row, row) - 0.5 * (float(JD_BOX_SIDE) - 1.0);
-        square(v_uv + o * u_step, JD_BOX_SIDE > 1 ? 1.0 : 0.0, zr, acc, wsum);
+        vec2 uv = v_uv + o * u_step;
+        vec4 c01 = vec4(uv, uv + vec2(u_step.x, 0.0)), c23 = vec4(uv + vec2(0.0, u_step.y), uv + u_step);
+#endif
+        square(texture2D(u_src, c01.xy), texture2D(u_src, c01.zw), texture2D(u_src, c23.xy), texture2D(u_src, c23.zw),
+               JD_BOX_SIDE > 1 ? 1.0 : 0.0, zr, acc, wsum);
 #else
         pair(v_uv, float(i + 1) * u_step, u_w[i + 1], zr, acc, wsum);
 #endif
