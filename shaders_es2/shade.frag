@@ -72,7 +72,8 @@ varying vec3 v_wide;         // the levels' light, per vertex (jd_diffused)
 #elif JD_WIDE_BUFFER
 // Where the vertex stage cannot read textures, the levels' light is summed
 // per fragment at half resolution (it is smooth: its finest Gaussian is a
-// level texel wide) and read here once: sqrt(wide / 2), alpha = covered.
+// level texel wide), its outline filled (wide_fill.frag), and read here
+// once: sqrt(wide / 2).
 uniform sampler2D u_wide;
 varying vec3 v_screen;       // where in it (mesh.vert), before the division by w
 #else
