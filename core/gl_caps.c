@@ -56,7 +56,10 @@ void jd_gl_caps_recognise(jd_gl_caps *c)
     const char *a = strstr(c->renderer, "Adreno (TM) ");
     if (a) c->adreno = atoi(a + strlen("Adreno (TM) "));
     if (c->vivante > 0 && c->vivante < 3000) snprintf(c->tier, sizeof c->tier, "Vivante GC400-GC2000");
-    if (c->adreno >= 300 && c->adreno < 400) snprintf(c->tier, sizeof c->tier, "Adreno 3xx");
+    if (c->adreno >= 300 && c->adreno < 400) {
+        snprintf(c->tier, sizeof c->tier, "Adreno 3xx");
+        c->levels_per_fragment = 1;
+    }
 }
 
 jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)

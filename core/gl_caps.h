@@ -30,6 +30,12 @@ typedef struct jd_gl_caps {
     int small_register_file; /* VideoCore IV, Mali-400/450 (by name or profile): shaders kept small */
     int vivante;             /* Vivante GC model by renderer string (2000 for "Vivante GC2000 rev 5108" or "GC2000 core"), or 0 */
     int adreno;              /* Adreno model by renderer string ("FD307" from Mesa: 307; "Adreno (TM) 306": 306), or 0 */
+    /* full's levels summed per fragment into a buffer at a lower resolution
+     * even though the vertex stage could read them (Adreno 3xx, by name or
+     * profile): its vertex and fragment programs share one set of ALUs, and
+     * the per-vertex sum (477 of ir3's instructions on every vertex of the
+     * mesh) cost more than the buffer's few thousand fragments. */
+    int levels_per_fragment;
     /* Instructions a program may have per stage, 0: no limit known. Vivante
      * cores before GC3000 hold their programs in a 256-instruction memory
      * (no instruction cache): a longer one fails when it is drawn. */

@@ -1,7 +1,7 @@
 /* Coarse meshes split where they are coarse, in the decoder's child.
  *
  * full sums the diffusion's levels per vertex on GPUs whose vertex stage
- * reads textures (VideoCore IV, Vivante GC3000 on, Adreno, desktops) and
+ * reads textures (VideoCore IV, Vivante GC3000 on, desktops) and
  * takes its Fresnel factors per vertex everywhere; single and dual find the
  * refraction per vertex. All of it assumes vertices about as close as the
  * levels' texels. A box of 12 triangles broke that: its faces came out 36%

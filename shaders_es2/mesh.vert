@@ -55,13 +55,13 @@ uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions 
 uniform vec2 u_fresnel;      // jd_fresnel_tc's fit at the scene's eta
 #if JD_WIDE_BUFFER
 // Where the levels' sum comes from its buffer (Utgard; Vivante GC400 to
-// GC2000), the local part's light is made here too, times its colour and
-// weight (u_local_x), and the highlight's side test rides in the half
-// vector's w: lima's shading one word shorter (27 -> 26; with a texture
-// 32 -> 31), its vertex stage 2 longer; Vivante GC2000 35 -> 33 (Midgard,
-// on the same path, 29 -> 31 cycles). Where the levels are summed per
-// vertex (VideoCore IV, Adreno 3xx) that form made the shading longer
-// (118 -> 122 and 119 -> 126 instructions).
+// GC2000; Adreno 3xx since 2026-12-06), the local part's light is made
+// here too, times its colour and weight (u_local_x), and the highlight's
+// side test rides in the half vector's w: lima's shading one word shorter
+// (27 -> 26; with a texture 32 -> 31), its vertex stage 2 longer; Vivante
+// GC2000 35 -> 33 (Midgard, on the same path, 29 -> 31 cycles). Where the
+// levels are summed per vertex (VideoCore IV; Adreno 3xx then) that form
+// made the shading longer (118 -> 122 and 119 -> 126 instructions).
 uniform vec3 u_local_x;
 varying vec4 v_fresnel;      // u_local_x n.l Ft(l)/c keep, Ft(v)/c
 varying vec4 v_half;         // w: n.l Ft(l)/c keep, > 0 where the vertex is lit

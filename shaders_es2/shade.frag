@@ -246,7 +246,7 @@ void main()
                                       dot(ns, h) * JD_SPEC_SCALE.y + JD_SPEC_OFFSET.y)).r;
 #else
     // Where there is no table (the levels summed per vertex: VideoCore IV,
-    // Vivante GC3000 and GC7000L, Adreno 3xx), (n.h / |n|)^shininess.
+    // Vivante GC3000 and GC7000L, desktops), (n.h / |n|)^shininess.
     float st = pow(max(dot(normalize(ns), h), 0.0), u_shading.z);
 #endif
     float spec = JD_LIT_V > 0.0 ? vis * st : 0.0;

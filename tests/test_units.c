@@ -14,6 +14,7 @@
 #include "gl_caps.h"
 #include "material.h"
 #include "mesh.h"
+#include "profile.h"
 #include "sh.h"
 #include "vmath.h"
 
@@ -470,6 +471,17 @@ static void test_recognise(void)
               c.small_register_file, c.vivante, c.adreno, c.max_program_instructions);
         CHECK((c.frag_highp_precision == 0) == gpus[i].utgard, "%s: highp %d", gpus[i].renderer, c.frag_highp_precision);
         CHECK(!strcmp(c.tier, gpus[i].tier), "%s: tier '%s', want '%s'", gpus[i].renderer, c.tier, gpus[i].tier);
+        /* Only Adreno 3xx sums full's levels per fragment by its name. */
+        CHECK(c.levels_per_fragment == (gpus[i].adreno >= 300 && gpus[i].adreno < 400), "%s: levels per fragment %d",
+              gpus[i].renderer, c.levels_per_fragment);
+    }
+    /* The adreno3xx profile as its name would; no other profile. */
+    for (int i = 0; i < jd_profile_count; i++) {
+        jd_gl_caps c;
+        memset(&c, 0, sizeof c);
+        jd_profile_apply(&jd_profiles[i], &c);
+        CHECK(c.levels_per_fragment == !strcmp(jd_profiles[i].name, "adreno3xx"), "profile %s: levels per fragment %d",
+              jd_profiles[i].name, c.levels_per_fragment);
     }
 }
 
