@@ -230,9 +230,9 @@ int jd_cmd_info(int argc, char **argv)
     if (c.max_program_instructions) print_program_limit(&c);
     printf("SH packing         %s\n", c.frag_highp_precision >= 23 ? "highp (3 bytes)" : "mediump (2 x 2 bytes)");
     printf("thickness read     %s\n", c.max_vertex_texture_units >= 2 ? "per vertex" : "per fragment (no vertex texture units)");
-    printf("full's diffusion   %s\n", c.levels_per_fragment ? "per fragment, at half resolution (cheaper than per vertex on this GPU)"
-                                    : c.max_vertex_texture_units >= 6 ? "per vertex"
-                                                                      : "per fragment, at half resolution (under 6 vertex texture units)");
+    printf("full's diffusion   %s\n", jd_gl_caps_levels_per_vertex(&c) ? "per vertex"
+                                    : c.levels_per_fragment ? "per fragment, at half resolution (cheaper than per vertex on this GPU)"
+                                                            : "per fragment, at half resolution (under 6 vertex texture units)");
     /* The target jade draws into here: EXT_multisampled_render_to_texture
      * makes the headless one multisampled where the driver has it. */
     int samples = jd_platform_samples(p);

@@ -62,6 +62,11 @@ void jd_gl_caps_recognise(jd_gl_caps *c)
     }
 }
 
+int jd_gl_caps_levels_per_vertex(const jd_gl_caps *c)
+{
+    return !c->levels_per_fragment && c->max_vertex_texture_units >= JD_DIFFUSION_VERTEX_UNITS;
+}
+
 jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)
 {
     memset(c, 0, sizeof *c);

@@ -53,6 +53,14 @@ jd_result jd_gl_caps_query(jd_gl_caps *caps, jd_error *err);
  * those and VideoCore IV, the Vivante and Adreno models and the Vivante
  * program limit. jd_gl_caps_query calls it; a test can too, with no GL. */
 void jd_gl_caps_recognise(jd_gl_caps *caps);
+/* Vertex texture units full's levels' sum per vertex reads: the light map
+ * and the five levels. */
+#define JD_DIFFUSION_VERTEX_UNITS 6
+/* Whether full's levels are summed in the vertex stage on this GPU: where
+ * it reads all their textures and the GPU does not pay less for the sum per
+ * fragment at a lower resolution (levels_per_fragment). The renderer's
+ * choice (unless asked for thickness per fragment) and jade info's line. */
+int jd_gl_caps_levels_per_vertex(const jd_gl_caps *caps);
 int jd_gl_has_extension(const char *name);
 /* Whether a space-separated extension list (GL's, or EGL's from
  * eglQueryString) names `name` as a whole word; list may be NULL. The one

@@ -110,11 +110,10 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     /* Two vertex texture units (depth map and tail table) move A0 to the
      * vertex stage; none (Mali-400) keeps it per fragment. */
     r->vertex_thickness = !d->fragment_thickness && d->caps->max_vertex_texture_units >= 2;
-    /* The light map and the level textures; not where the GPU pays less
-     * for the levels' sum per fragment at a lower resolution (Adreno 3xx:
-     * gl_caps.h, levels_per_fragment). */
-    r->vertex_diffusion = !d->fragment_thickness && !d->caps->levels_per_fragment &&
-                          d->caps->max_vertex_texture_units >= 1 + DIFF_TEXTURES;
+    /* The light map and the level textures, where the GPU does not pay less
+     * for the sum per fragment (gl_caps.h). */
+    _Static_assert(JD_DIFFUSION_VERTEX_UNITS == 1 + DIFF_TEXTURES, "the vertex stage's diffusion textures");
+    r->vertex_diffusion = !d->fragment_thickness && jd_gl_caps_levels_per_vertex(d->caps);
 
     if (d->antialias < JD_AA_AUTO || d->antialias > JD_AA_POST)
         return jd_fail(err, JD_ERR_ARG, "anti-aliasing %d must be auto, off or post", (int)d->antialias);

@@ -37,6 +37,7 @@ int main()
         FN(jd_fresnel_dielectric),
         FN(jd_fresnel_fit),
         FN(jd_fresnel_mean),
+        FN(jd_gl_caps_levels_per_vertex),
         FN(jd_gl_caps_query),
         FN(jd_gl_caps_recognise),
         FN(jd_gl_has_extension),
