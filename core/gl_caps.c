@@ -41,6 +41,7 @@ void jd_gl_caps_recognise(jd_gl_caps *c)
     /* VideoCore IV (Mesa vc4 says "VC4 V3D 2.1"; Broadcom's blob "VideoCore IV HW"). */
     if (strstr(c->renderer, "VC4") || strstr(c->renderer, "VideoCore IV")) {
         c->small_register_file = 1;
+        c->levels_per_fragment = 1;
         snprintf(c->tier, sizeof c->tier, "VideoCore IV");
     }
     /* Vivante ("Vivante GC2000 rev 5108" from Mesa etnaviv, "GC2000 core"

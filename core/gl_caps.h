@@ -31,10 +31,13 @@ typedef struct jd_gl_caps {
     int vivante;             /* Vivante GC model by renderer string (2000 for "Vivante GC2000 rev 5108" or "GC2000 core"), or 0 */
     int adreno;              /* Adreno model by renderer string ("FD307" from Mesa: 307; "Adreno (TM) 306": 306), or 0 */
     /* full's levels summed per fragment into a buffer at a lower resolution
-     * even though the vertex stage could read them (Adreno 3xx, by name or
-     * profile): its vertex and fragment programs share one set of ALUs, and
-     * the per-vertex sum (477 of ir3's instructions on every vertex of the
-     * mesh) cost more than the buffer's few thousand fragments. */
+     * even though the vertex stage could read them (Adreno 3xx and
+     * VideoCore IV, by name or profile): their vertex and fragment programs
+     * share one set of ALUs, and the per-vertex sum (477 of ir3's
+     * instructions, 176 of vc4's, on every vertex of the mesh) cost more
+     * than the buffer's few thousand fragments on meshes of 3,000 (Adreno
+     * 306) or 20,000 (VideoCore IV) vertices and more, by the frame-cost
+     * model (docs/frame-cost.md); on smaller ones a little less. */
     int levels_per_fragment;
     /* Instructions a program may have per stage, 0: no limit known. Vivante
      * cores before GC3000 hold their programs in a 256-instruction memory

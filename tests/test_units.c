@@ -448,6 +448,7 @@ static void test_recognise(void)
         {"lima", "Mali400", 1, 1, 0, 0, 0, "Mali-400/450"},
         {"ARM", "Mali-450 MP", 1, 1, 0, 0, 0, "Mali-400/450"},
         {"Broadcom", "VC4 V3D 2.1", 0, 1, 0, 0, 0, "VideoCore IV"},
+        {"Broadcom", "VideoCore IV HW", 0, 1, 0, 0, 0, "VideoCore IV"},
         {"etnaviv", "Vivante GC2000 rev 5108", 0, 0, 2000, 0, 256, "Vivante GC400-GC2000"},
         {"etnaviv", "Vivante GC400 rev 4652", 0, 0, 400, 0, 256, "Vivante GC400-GC2000"},
         {"Vivante Corporation", "GC2000 core", 0, 0, 2000, 0, 256, "Vivante GC400-GC2000"},
@@ -471,17 +472,18 @@ static void test_recognise(void)
               c.small_register_file, c.vivante, c.adreno, c.max_program_instructions);
         CHECK((c.frag_highp_precision == 0) == gpus[i].utgard, "%s: highp %d", gpus[i].renderer, c.frag_highp_precision);
         CHECK(!strcmp(c.tier, gpus[i].tier), "%s: tier '%s', want '%s'", gpus[i].renderer, c.tier, gpus[i].tier);
-        /* Only Adreno 3xx sums full's levels per fragment by its name. */
-        CHECK(c.levels_per_fragment == (gpus[i].adreno >= 300 && gpus[i].adreno < 400), "%s: levels per fragment %d",
-              gpus[i].renderer, c.levels_per_fragment);
+        /* Only Adreno 3xx and VideoCore IV sum full's levels per fragment by their names. */
+        int per_fragment = (gpus[i].adreno >= 300 && gpus[i].adreno < 400) || !strcmp(gpus[i].tier, "VideoCore IV");
+        CHECK(c.levels_per_fragment == per_fragment, "%s: levels per fragment %d", gpus[i].renderer, c.levels_per_fragment);
     }
-    /* The adreno3xx profile as its name would; no other profile. */
+    /* The adreno3xx and vc4 profiles as their names would; no other profile. */
     for (int i = 0; i < jd_profile_count; i++) {
         jd_gl_caps c;
         memset(&c, 0, sizeof c);
         jd_profile_apply(&jd_profiles[i], &c);
-        CHECK(c.levels_per_fragment == !strcmp(jd_profiles[i].name, "adreno3xx"), "profile %s: levels per fragment %d",
-              jd_profiles[i].name, c.levels_per_fragment);
+        int per_fragment = !strcmp(jd_profiles[i].name, "adreno3xx") || !strcmp(jd_profiles[i].name, "vc4");
+        CHECK(c.levels_per_fragment == per_fragment, "profile %s: levels per fragment %d", jd_profiles[i].name,
+              c.levels_per_fragment);
     }
 }
 
