@@ -215,8 +215,10 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
              /* Full summed per vertex reads the light map and five levels
               * there, the light map and the colour texture per fragment:
               * the light through thin parts' table is one sampler more,
-              * which a GPU of 8 units (VideoCore IV) has no room for with
-              * a colour texture; there full goes without it. */
+              * which a GPU of 8 units has no room for with a colour
+              * texture; there full goes without it. (VideoCore IV, the one
+              * such GPU jade knew, sums them per fragment since 2026-12-06:
+              * gl_caps.h.) */
              m == JD_MODE_FULL && r->vertex_diffusion && 8 + (r->albedo && map) > r->d.caps->max_texture_units
                  ? "#define JD_NO_SLAB 1\n" : "",
              /* The frame's alpha: its luma, for the pass after it (renderer.c). */

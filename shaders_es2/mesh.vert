@@ -60,7 +60,7 @@ uniform vec2 u_fresnel;      // jd_fresnel_tc's fit at the scene's eta
 // side test rides in the half vector's w: lima's shading one word shorter
 // (27 -> 26; with a texture 32 -> 31), its vertex stage 2 longer; Vivante
 // GC2000 35 -> 33 (Midgard, on the same path, 29 -> 31 cycles). Where the
-// levels are summed per vertex (VideoCore IV; Adreno 3xx then) that form
+// levels are summed per vertex (VideoCore IV and Adreno 3xx then) that form
 // made the shading longer (118 -> 122 and 119 -> 126 instructions).
 uniform vec3 u_local_x;
 varying vec4 v_fresnel;      // u_local_x n.l Ft(l)/c keep, Ft(v)/c
