@@ -216,8 +216,9 @@ int jd_cmd_bench(int argc, char **argv)
            s.mesh.num_vertices, info.proxy->num_indices / 3);
     printf("  \"size\": \"%dx%d\", \"frames\": %d, \"material\": ", o.width, o.height, o.frames);
     jd_json_string(stdout, o.material);
-    printf(", \"cube_size\": %d, \"precision\": \"%s\",\n  \"gl_renderer\": ",
-           o.rdesc.cube_size ? o.rdesc.cube_size : 64, info.highp ? "highp" : "mediump");
+    printf(", \"cube_size\": %d, \"precision\": \"%s\", \"full_levels\": \"%s\",\n  \"gl_renderer\": ",
+           o.rdesc.cube_size ? o.rdesc.cube_size : 64, info.highp ? "highp" : "mediump",
+           info.vertex_levels ? "per vertex" : "per fragment");
     jd_json_string(stdout, s.caps.renderer);
     printf(", \"platform\": ");
     jd_json_string(stdout, jd_platform_describe(s.platform));

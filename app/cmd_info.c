@@ -32,11 +32,40 @@ static void on_program(void *user, const char *vs, const char *fs, const char *d
     l->count++;
 }
 
+/* One more renderer on the session's mesh, or on `m`, with full's levels
+ * summed where `levels` says: its programs are built and observed. The
+ * first renderer's target and its samples (session.c), so that the pass
+ * after the frame, and the luma the picture's programs write for it or not,
+ * are the board's here too. */
+static int compile_variant(jd_session *s, const jd_options *o, const jd_mesh *m, jd_levels levels, const char *what)
+{
+    jd_error err = {0};
+    jd_renderer_desc rd = o->rdesc;
+    rd.mesh = m;
+    rd.caps = &s->caps;
+    rd.levels = levels;
+    rd.width = o->width;
+    rd.height = o->height;
+    rd.max_width = o->width;
+    rd.max_height = o->height;
+    rd.target_fbo = jd_platform_framebuffer(s->platform);
+    if (!rd.target_samples) rd.target_samples = jd_platform_samples(s->platform);
+    rd.get_proc = jd_platform_gl_proc;
+    jd_renderer *r = NULL;
+    if (jd_renderer_create(&rd, &s->arena, &r, &err)) {
+        fprintf(stderr, "jade info: %s: %s\n", what, err.msg);
+        return 0;
+    }
+    jd_renderer_destroy(r);
+    return 1;
+}
+
 /* The picture's programs for a model with its own colours (JD_ALBEDO,
  * JD_ALBEDO_MAP, JD_ALBEDO_PARTIAL): more renderers on the same mesh given
- * a colour per vertex and a 4 x 4 texture. Its other programs are the first renderer's
- * over again; the compiler table keeps the first of each name. */
-static int compile_colour_variants(jd_session *s, jd_options *o)
+ * a colour per vertex and a 4 x 4 texture, full's levels where `levels`
+ * says. Its other programs are the first renderer's over again; the
+ * compiler table keeps the first of each name. */
+static int compile_colour_variants(jd_session *s, const jd_options *o, jd_levels levels)
 {
     jd_error err = {0};
     jd_mesh m = s->mesh;
@@ -53,29 +82,11 @@ static int compile_colour_variants(jd_session *s, jd_options *o)
     memset(m.texels, 200, 4 * 4 * 4);
     m.texture_w = m.texture_h = 4;
     jd_mesh_albedo_prepare(&m);
-    jd_renderer_desc rd = o->rdesc;
-    rd.mesh = &m;
-    rd.caps = &s->caps;
-    rd.width = o->width;
-    rd.height = o->height;
-    rd.max_width = o->width;
-    rd.max_height = o->height;
-    /* The first renderer's target and its samples (session.c), so that
-     * the pass after the frame, and the luma the picture's programs write
-     * for it or not, are the board's here too. */
-    rd.target_fbo = jd_platform_framebuffer(s->platform);
-    if (!rd.target_samples) rd.target_samples = jd_platform_samples(s->platform);
-    rd.get_proc = jd_platform_gl_proc;
     /* Twice: every vertex textured, then one not (a model whose materials
      * are partly untextured). */
     for (int partial = 0; partial < 2; partial++) {
         m.colors[3] = partial ? 0 : 255;
-        jd_renderer *r = NULL;
-        if (jd_renderer_create(&rd, &s->arena, &r, &err)) {
-            fprintf(stderr, "jade info: the colour variants: %s\n", err.msg);
-            return 0;
-        }
-        jd_renderer_destroy(r);
+        if (!compile_variant(s, o, &m, levels, "the colour variants")) return 0;
     }
     return 1;
 }
@@ -111,7 +122,18 @@ static int compile_all(jd_options *o)
     /* The session passes the driver's messages on (the compiler's among
      * them) as they come, between this program's two lines. */
     int ok = jd_session_open(&s, o, "info");
-    if (ok && !s.mesh.colors) ok = compile_colour_variants(&s, o);
+    if (ok && !s.mesh.colors) ok = compile_colour_variants(&s, o, o->rdesc.levels);
+    /* Where the GPU sums full's levels per vertex on small meshes and per
+     * fragment on large ones (gl_caps.h, levels_per_fragment_from), the
+     * path this mesh did not take too, so that the table prices both. */
+    if (ok && s.caps.levels_per_fragment_from > 0 && s.caps.max_vertex_texture_units >= JD_DIFFUSION_VERTEX_UNITS &&
+        o->rdesc.levels == JD_LEVELS_AUTO) {
+        jd_renderer_info info;
+        jd_renderer_get_info(s.renderer, &info);
+        jd_levels other = info.vertex_levels ? JD_LEVELS_FRAGMENT : JD_LEVELS_VERTEX;
+        ok = compile_variant(&s, o, &s.mesh, other, "full's levels the other way") &&
+             (s.mesh.colors || compile_colour_variants(&s, o, other));
+    }
     jd_program_observe(NULL, NULL);
     jd_program_extra_defines(NULL);
     if (ok) printf("jade info --compile: %d programs built for %s (%s), none failed\n", l.count, s.caps.renderer,
@@ -230,9 +252,23 @@ int jd_cmd_info(int argc, char **argv)
     if (c.max_program_instructions) print_program_limit(&c);
     printf("SH packing         %s\n", c.frag_highp_precision >= 23 ? "highp (3 bytes)" : "mediump (2 x 2 bytes)");
     printf("thickness read     %s\n", c.max_vertex_texture_units >= 2 ? "per vertex" : "per fragment (no vertex texture units)");
-    printf("full's diffusion   %s\n", jd_gl_caps_levels_per_vertex(&c) ? "per vertex"
-                                    : c.levels_per_fragment ? "per fragment, at half resolution (cheaper than per vertex on this GPU)"
-                                                            : "per fragment, at half resolution (under 6 vertex texture units)");
+    {
+        /* The renderer's choice (gl_caps.h) for the smallest mesh, without
+         * and with a colour texture, and the vertex count it changes at. */
+        int plain = jd_gl_caps_levels_per_vertex(&c, 0, 0), coloured = jd_gl_caps_levels_per_vertex(&c, 0, 1);
+        if (!plain)
+            printf("full's diffusion   per fragment, at half resolution (%s)\n",
+                   c.max_vertex_texture_units < JD_DIFFUSION_VERTEX_UNITS ? "under 6 vertex texture units"
+                                                                          : "too few texture units");
+        else if (c.levels_per_fragment_from > 0)
+            printf("full's diffusion   per vertex on meshes under %d vertices, per fragment at half resolution on "
+                   "larger ones (cheaper there on this GPU)\n", c.levels_per_fragment_from);
+        else
+            printf("full's diffusion   per vertex\n");
+        if (plain && !coloured)
+            printf("                   per fragment with a colour texture (%d texture units: per vertex, none left for "
+                   "the light through thin parts)\n", c.max_texture_units);
+    }
     /* The target jade draws into here: EXT_multisampled_render_to_texture
      * makes the headless one multisampled where the driver has it. */
     int samples = jd_platform_samples(p);

@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef enum { T_STR, T_PATH, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION, T_ANTIALIAS, T_PROBE, T_KMS } opt_type;
+typedef enum { T_STR, T_PATH, T_INT, T_FLOAT, T_FLOAT3, T_SIZE, T_FLAG, T_MODE, T_PRECISION, T_ANTIALIAS, T_PROBE, T_KMS, T_LEVELS } opt_type;
 
 typedef struct opt {
     const char *name;
@@ -112,6 +112,8 @@ static const opt table[] = {
     {"--render-scale", T_FLOAT, OFF(rdesc.render_scale), 0.25, 1, R | B,
      "X          draw the picture at X of its size and enlarge it [the device's tier: 1, less on Mali-400 and VideoCore IV from 1280x960]"},
     {"--fragment-thickness", T_FLAG, OFF(rdesc.fragment_thickness), 0, 0, R | B, "           thickness per fragment, not per vertex (coarse meshes)"},
+    {"--levels", T_LEVELS, OFF(rdesc.levels), 0, 0, R | B,
+     "L          auto|vertex|fragment: where full sums its diffusion levels [auto: by the GPU and the mesh's vertices]"},
     {"--no-cull", T_FLAG, OFF(rdesc.no_cull), 0, 0, R | B, "           draw back faces (open meshes)"},
     {"--light-speed", T_FLOAT, OFF(light_speed), -3600, 3600, K,
      "DEG/S      the light's orbit [30: once every 12 s]; 0: still, and the light-space passes are reused"},
@@ -374,10 +376,14 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
         case T_PRECISION:
         case T_ANTIALIAS:
         case T_PROBE:
-        case T_KMS: {
-            /* The words in the enums' order (jd_precision, jd_antialias, jd_probe, jd_kms_api). */
-            static const char *const words[][3] = {
-                {"auto", "highp", "mediump"}, {"auto", "off", "post"}, {"auto", "on", "off"}, {"auto", "atomic", "legacy"}};
+        case T_KMS:
+        case T_LEVELS: {
+            /* The words in the enums' order (jd_precision, jd_antialias, jd_probe, jd_kms_api, jd_levels). */
+            static const char *const words[][3] = {{"auto", "highp", "mediump"},
+                                                   {"auto", "off", "post"},
+                                                   {"auto", "on", "off"},
+                                                   {"auto", "atomic", "legacy"},
+                                                   {"auto", "vertex", "fragment"}};
             const char *const *w = words[op->type - T_PRECISION];
             int k = 0;
             while (k < 3 && strcmp(v, w[k])) k++;
@@ -388,6 +394,7 @@ int jd_options_parse(jd_options *o, int command, const char *cmd, int argc, char
             if (op->type == T_PRECISION) o->rdesc.precision = (jd_precision)k;
             else if (op->type == T_ANTIALIAS) o->rdesc.antialias = (jd_antialias)k;
             else if (op->type == T_PROBE) o->rdesc.program_probe = (jd_probe)k;
+            else if (op->type == T_LEVELS) o->rdesc.levels = (jd_levels)k;
             else o->kms = k;
             break;
         }

@@ -41,7 +41,7 @@ void jd_gl_caps_recognise(jd_gl_caps *c)
     /* VideoCore IV (Mesa vc4 says "VC4 V3D 2.1"; Broadcom's blob "VideoCore IV HW"). */
     if (strstr(c->renderer, "VC4") || strstr(c->renderer, "VideoCore IV")) {
         c->small_register_file = 1;
-        c->levels_per_fragment = 1;
+        c->levels_per_fragment_from = JD_VC4_LEVELS_PER_FRAGMENT_FROM;
         snprintf(c->tier, sizeof c->tier, "VideoCore IV");
     }
     /* Vivante ("Vivante GC2000 rev 5108" from Mesa etnaviv, "GC2000 core"
@@ -59,13 +59,15 @@ void jd_gl_caps_recognise(jd_gl_caps *c)
     if (c->vivante > 0 && c->vivante < 3000) snprintf(c->tier, sizeof c->tier, "Vivante GC400-GC2000");
     if (c->adreno >= 300 && c->adreno < 400) {
         snprintf(c->tier, sizeof c->tier, "Adreno 3xx");
-        c->levels_per_fragment = 1;
+        c->levels_per_fragment_from = JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM;
     }
 }
 
-int jd_gl_caps_levels_per_vertex(const jd_gl_caps *c)
+int jd_gl_caps_levels_per_vertex(const jd_gl_caps *c, unsigned vertices, int colour_texture)
 {
-    return !c->levels_per_fragment && c->max_vertex_texture_units >= JD_DIFFUSION_VERTEX_UNITS;
+    if (c->levels_per_fragment_from > 0 && vertices >= (unsigned)c->levels_per_fragment_from) return 0;
+    return c->max_vertex_texture_units >= JD_DIFFUSION_VERTEX_UNITS &&
+           JD_FULL_VERTEX_LEVELS_UNITS + (colour_texture != 0) <= c->max_texture_units;
 }
 
 jd_result jd_gl_caps_query(jd_gl_caps *c, jd_error *err)

@@ -30,15 +30,15 @@ typedef struct jd_gl_caps {
     int small_register_file; /* VideoCore IV, Mali-400/450 (by name or profile): shaders kept small */
     int vivante;             /* Vivante GC model by renderer string (2000 for "Vivante GC2000 rev 5108" or "GC2000 core"), or 0 */
     int adreno;              /* Adreno model by renderer string ("FD307" from Mesa: 307; "Adreno (TM) 306": 306), or 0 */
-    /* full's levels summed per fragment into a buffer at a lower resolution
-     * even though the vertex stage could read them (Adreno 3xx and
-     * VideoCore IV, by name or profile): their vertex and fragment programs
-     * share one set of ALUs, and the per-vertex sum (477 of ir3's
-     * instructions, 176 of vc4's, on every vertex of the mesh) cost more
-     * than the buffer's few thousand fragments on meshes of 3,000 (Adreno
-     * 306) or 20,000 (VideoCore IV) vertices and more, by the frame-cost
-     * model (docs/frame-cost.md); on smaller ones a little less. */
-    int levels_per_fragment;
+    /* The mesh's vertex count from which full's levels are summed per
+     * fragment, into a buffer at a lower resolution, even though the vertex
+     * stage could read them; 0: never (Adreno 3xx and VideoCore IV, by name
+     * or profile, set it). Their vertex and fragment programs share one set
+     * of ALUs: the per-vertex sum (ir3's 477 instructions, vc4's 176) on
+     * every vertex costs more than the buffer's few thousand fragments on
+     * large meshes and less on small ones, by the frame-cost model
+     * (docs/frame-cost.md). */
+    int levels_per_fragment_from;
     /* Instructions a program may have per stage, 0: no limit known. Vivante
      * cores before GC3000 hold their programs in a 256-instruction memory
      * (no instruction cache): a longer one fails when it is drawn. */
@@ -59,11 +59,24 @@ void jd_gl_caps_recognise(jd_gl_caps *caps);
 /* Vertex texture units full's levels' sum per vertex reads: the light map
  * and the five levels. */
 #define JD_DIFFUSION_VERTEX_UNITS 6
-/* Whether full's levels are summed in the vertex stage on this GPU: where
- * it reads all their textures and the GPU does not pay less for the sum per
- * fragment at a lower resolution (levels_per_fragment). The renderer's
- * choice (unless asked for thickness per fragment) and jade info's line. */
-int jd_gl_caps_levels_per_vertex(const jd_gl_caps *caps);
+/* Texture units full takes in all when it sums them per vertex, its light
+ * through thin parts' table among them, before a colour texture: one more
+ * than a GPU of 8 (VideoCore IV) has beside one (render_program.c). */
+#define JD_FULL_VERTEX_LEVELS_UNITS 8
+/* levels_per_fragment_from where a GPU sets it: the vertex count at which
+ * the two paths cost the same by the frame-cost model at 1080p, taken from
+ * the close-up, where the frame costs most (tools/frame-cost.sh's boards;
+ * docs/frame-cost.md has the meshes measured). */
+#define JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM 3000
+#define JD_VC4_LEVELS_PER_FRAGMENT_FROM 16000
+/* Whether full's levels are summed in the vertex stage on this GPU for a
+ * mesh of `vertices`, with a colour texture or not: where it reads all their
+ * textures, has a unit left for the light through thin parts' table
+ * (JD_FULL_VERTEX_LEVELS_UNITS, and one for the colour), and does not pay
+ * less for the sum per fragment at a lower resolution from that size on
+ * (levels_per_fragment_from). The renderer's choice where it is not told
+ * (jd_renderer_desc.levels), and jade info's lines. */
+int jd_gl_caps_levels_per_vertex(const jd_gl_caps *caps, unsigned vertices, int colour_texture);
 int jd_gl_has_extension(const char *name);
 /* Whether a space-separated extension list (GL's, or EGL's from
  * eglQueryString) names `name` as a whole word; list may be NULL. The one

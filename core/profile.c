@@ -87,7 +87,8 @@ void jd_profile_apply(const jd_profile *p, jd_gl_caps *c)
     if (p->small_register_file) c->small_register_file = 1;
     if (!strcmp(p->name, "mali400")) c->utgard = 1; /* as the renderer string "Mali-400" would */
     /* as "FD307" or "Adreno (TM) 306", "VC4 V3D 2.1" or "VideoCore IV HW" would */
-    if (!strcmp(p->name, "adreno3xx") || !strcmp(p->name, "vc4")) c->levels_per_fragment = 1;
+    if (!strcmp(p->name, "adreno3xx")) c->levels_per_fragment_from = JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM;
+    if (!strcmp(p->name, "vc4")) c->levels_per_fragment_from = JD_VC4_LEVELS_PER_FRAGMENT_FROM;
     if (p->max_program_instructions &&
         (!c->max_program_instructions || c->max_program_instructions > p->max_program_instructions))
         c->max_program_instructions = p->max_program_instructions;

@@ -209,17 +209,19 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
              "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
              "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO %d\n#define JD_ALBEDO_MAP %d\n"
              "#define JD_ALBEDO_PARTIAL %d\n#define JD_TWO_SIDED %d\n%s%s%s",
-             r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL, r->vertex_diffusion,
+             r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL,
+             m == JD_MODE_FULL && r->vertex_diffusion,
              m == JD_MODE_FULL && !r->vertex_diffusion, r->albedo, r->albedo && map, r->albedo && map && r->albedo_partial,
              r->d.no_cull, spec,
              /* Full summed per vertex reads the light map and five levels
               * there, the light map and the colour texture per fragment:
               * the light through thin parts' table is one sampler more,
-              * which a GPU of 8 units has no room for with a colour
-              * texture; there full goes without it. (VideoCore IV, the one
-              * such GPU jade knew, sums them per fragment since 2026-12-06:
-              * gl_caps.h.) */
-             m == JD_MODE_FULL && r->vertex_diffusion && 8 + (r->albedo && map) > r->d.caps->max_texture_units
+              * which a GPU of 8 units (VideoCore IV) has no room for with a
+              * colour texture; there full goes without it. Only when the
+              * sum per vertex is asked for: the renderer's own choice sums
+              * them per fragment there (renderer.c). */
+             m == JD_MODE_FULL && r->vertex_diffusion &&
+                     JD_FULL_VERTEX_LEVELS_UNITS + (r->albedo && map) > r->d.caps->max_texture_units
                  ? "#define JD_NO_SLAB 1\n" : "",
              /* The frame's alpha: its luma, for the pass after it (renderer.c). */
              r->luma_alpha ? "#define JD_LUMA_ALPHA 1\n" : "");

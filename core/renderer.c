@@ -110,10 +110,24 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     /* Two vertex texture units (depth map and tail table) move A0 to the
      * vertex stage; none (Mali-400) keeps it per fragment. */
     r->vertex_thickness = !d->fragment_thickness && d->caps->max_vertex_texture_units >= 2;
-    /* The light map and the level textures, where the GPU does not pay less
-     * for the sum per fragment (gl_caps.h). */
+    /* full's levels: the light map and the level textures per vertex, where
+     * the GPU reads them there, does not pay less for the sum per fragment
+     * on a mesh of this size, and keeps full's light through thin parts
+     * beside them (gl_caps.h): asked for per vertex, a GPU of 8 texture
+     * units goes without it beside a colour texture (render_program.c,
+     * JD_NO_SLAB). */
     _Static_assert(JD_DIFFUSION_VERTEX_UNITS == 1 + DIFF_TEXTURES, "the vertex stage's diffusion textures");
-    r->vertex_diffusion = !d->fragment_thickness && jd_gl_caps_levels_per_vertex(d->caps);
+    if (d->levels < JD_LEVELS_AUTO || d->levels > JD_LEVELS_FRAGMENT)
+        return jd_fail(err, JD_ERR_ARG, "levels %d must be auto, vertex or fragment", (int)d->levels);
+    int vertex_units = d->caps->max_vertex_texture_units >= JD_DIFFUSION_VERTEX_UNITS;
+    if (d->levels == JD_LEVELS_VERTEX && (!vertex_units || d->fragment_thickness))
+        return jd_fail(err, JD_ERR_UNSUPPORTED, "full's levels per vertex asked for, but %s",
+                       d->fragment_thickness ? "thickness is read per fragment (--fragment-thickness)"
+                                             : "this GPU has under 6 vertex texture units");
+    r->vertex_diffusion = d->levels == JD_LEVELS_VERTEX ||
+                          (d->levels == JD_LEVELS_AUTO && !d->fragment_thickness &&
+                           jd_gl_caps_levels_per_vertex(d->caps, d->mesh->num_vertices,
+                                                        d->mesh->colors && d->mesh->texels));
 
     if (d->antialias < JD_AA_AUTO || d->antialias > JD_AA_POST)
         return jd_fail(err, JD_ERR_ARG, "anti-aliasing %d must be auto, off or post", (int)d->antialias);
@@ -425,6 +439,7 @@ void jd_renderer_get_info(const jd_renderer *r, jd_renderer_info *info)
     info->texture_height = r->albedo_h;
     info->highp = r->highp;
     info->vertex_thickness = r->vertex_thickness;
+    info->vertex_levels = r->vertex_diffusion;
     info->gpu_timer = r->tq.ok;
     info->target_samples = r->target_samples;
     info->post_antialias = r->aa_now;

@@ -35,6 +35,14 @@ typedef enum jd_antialias { JD_AA_AUTO = 0, JD_AA_OFF, JD_AA_POST } jd_antialias
  * than when a mode first needs them. AUTO runs it on GPUs and skips it on
  * software rasterizers (llvmpipe, softpipe), which draw whatever links. */
 typedef enum jd_probe { JD_PROBE_AUTO = 0, JD_PROBE_ON, JD_PROBE_OFF } jd_probe;
+/* Where full sums its light-space levels: in the vertex stage (where it
+ * reads six textures), or per fragment into a buffer at a lower resolution
+ * that the picture reads. AUTO: by the GPU and the mesh's vertex count
+ * (jd_gl_caps_levels_per_vertex), and per fragment wherever the sum per
+ * vertex would leave full without its light through thin parts (a GPU of 8
+ * texture units with a colour texture). The two give nearly the same
+ * picture; asking for one tests it or prices it on a board. */
+typedef enum jd_levels { JD_LEVELS_AUTO = 0, JD_LEVELS_VERTEX, JD_LEVELS_FRAGMENT } jd_levels;
 
 const char *jd_mode_name(jd_mode m);
 int jd_mode_parse(const char *s, jd_mode *out);
@@ -58,7 +66,9 @@ typedef struct jd_renderer_desc {
     jd_antialias antialias; /* [AUTO] */
     int no_cull;          /* draw back faces too (open meshes) */
     int fragment_thickness; /* read thickness per fragment even where the
-                               vertex stage could (coarse meshes) */
+                               vertex stage could (coarse meshes); full's
+                               levels then per fragment too */
+    jd_levels levels;     /* [AUTO] where full sums its levels (VERTEX needs 6 vertex texture units) */
     /* Looks up GL extension entry points (the platform's); with it and
      * GL_EXT_disjoint_timer_query, timed frames also get GPU pass times. */
     void *(*get_proc)(const char *name);
@@ -191,6 +201,7 @@ typedef struct jd_renderer_info {
     int texture_width, texture_height; /* its size as uploaded (halved to the device's limit) */
     int highp;                /* SH packing: 1 three bytes (fragment highp), 0 two (mediump) */
     int vertex_thickness;     /* thickness read per vertex (vertex texture units), else per fragment */
+    int vertex_levels;        /* full's levels summed per vertex, else per fragment at a lower resolution */
     int gpu_timer;            /* GL_EXT_disjoint_timer_query: per-pass GPU times with timing on */
     int target_samples;       /* samples per pixel of the target (desc.target_samples, or GL_SAMPLES) */
     int post_antialias;       /* at this size the anti-aliasing pass runs after each frame */

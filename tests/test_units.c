@@ -472,18 +472,38 @@ static void test_recognise(void)
               c.small_register_file, c.vivante, c.adreno, c.max_program_instructions);
         CHECK((c.frag_highp_precision == 0) == gpus[i].utgard, "%s: highp %d", gpus[i].renderer, c.frag_highp_precision);
         CHECK(!strcmp(c.tier, gpus[i].tier), "%s: tier '%s', want '%s'", gpus[i].renderer, c.tier, gpus[i].tier);
-        /* Only Adreno 3xx and VideoCore IV sum full's levels per fragment by their names. */
-        int per_fragment = (gpus[i].adreno >= 300 && gpus[i].adreno < 400) || !strcmp(gpus[i].tier, "VideoCore IV");
-        CHECK(c.levels_per_fragment == per_fragment, "%s: levels per fragment %d", gpus[i].renderer, c.levels_per_fragment);
+        /* Only Adreno 3xx and VideoCore IV sum full's levels per fragment
+         * by their names, on meshes from their sizes on. */
+        int from = gpus[i].adreno >= 300 && gpus[i].adreno < 400 ? JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM
+                   : !strcmp(gpus[i].tier, "VideoCore IV")       ? JD_VC4_LEVELS_PER_FRAGMENT_FROM
+                                                                  : 0;
+        CHECK(c.levels_per_fragment_from == from, "%s: levels per fragment from %d vertices", gpus[i].renderer,
+              c.levels_per_fragment_from);
     }
-    /* The adreno3xx and vc4 profiles as their names would; no other profile. */
+    /* The adreno3xx and vc4 profiles as their names would; no other
+     * profile. With the vertex stage's textures (the device's own, 16 here,
+     * lowered by the profile), per vertex below the count and per fragment
+     * from it. */
     for (int i = 0; i < jd_profile_count; i++) {
         jd_gl_caps c;
         memset(&c, 0, sizeof c);
+        c.max_vertex_texture_units = c.max_texture_units = 16;
         jd_profile_apply(&jd_profiles[i], &c);
-        int per_fragment = !strcmp(jd_profiles[i].name, "adreno3xx") || !strcmp(jd_profiles[i].name, "vc4");
-        CHECK(c.levels_per_fragment == per_fragment, "profile %s: levels per fragment %d", jd_profiles[i].name,
-              c.levels_per_fragment);
+        int from = !strcmp(jd_profiles[i].name, "adreno3xx") ? JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM
+                   : !strcmp(jd_profiles[i].name, "vc4")     ? JD_VC4_LEVELS_PER_FRAGMENT_FROM
+                                                              : 0;
+        CHECK(c.levels_per_fragment_from == from, "profile %s: levels per fragment from %d vertices",
+              jd_profiles[i].name, c.levels_per_fragment_from);
+        int vt = c.max_vertex_texture_units >= JD_DIFFUSION_VERTEX_UNITS;
+        unsigned below = from ? (unsigned)from - 1 : 1225, at = from ? (unsigned)from : 46080;
+        CHECK(jd_gl_caps_levels_per_vertex(&c, below, 0) == vt && jd_gl_caps_levels_per_vertex(&c, at, 0) == (vt && !from),
+              "profile %s: levels per vertex %d for %u vertices, %d for %u", jd_profiles[i].name,
+              jd_gl_caps_levels_per_vertex(&c, below, 0), below, jd_gl_caps_levels_per_vertex(&c, at, 0), at);
+        /* With a colour texture, not where the light through thin parts'
+         * table would find no unit (vc4's 8). */
+        int room = c.max_texture_units > JD_FULL_VERTEX_LEVELS_UNITS;
+        CHECK(jd_gl_caps_levels_per_vertex(&c, below, 1) == (vt && room), "profile %s: textured, levels per vertex %d",
+              jd_profiles[i].name, jd_gl_caps_levels_per_vertex(&c, below, 1));
     }
 }
 
