@@ -123,11 +123,12 @@ static int compile_all(jd_options *o)
      * them) as they come, between this program's two lines. */
     int ok = jd_session_open(&s, o, "info");
     if (ok && !s.mesh.colors) ok = compile_colour_variants(&s, o, o->rdesc.levels);
-    /* Where the GPU sums full's levels per vertex on small meshes and per
-     * fragment on large ones (gl_caps.h, levels_per_fragment_from), the
-     * path this mesh did not take too, so that the table prices both. */
-    if (ok && s.caps.levels_per_fragment_from > 0 && s.caps.max_vertex_texture_units >= JD_DIFFUSION_VERTEX_UNITS &&
-        o->rdesc.levels == JD_LEVELS_AUTO) {
+    /* Where the vertex stage can sum full's levels, the path this mesh did
+     * not take too: the renderer takes the other on meshes of another size
+     * (gl_caps.h, levels_per_fragment_from) or with a colour texture, and
+     * --levels asks for either, so that the table prices both. */
+    if (ok && s.caps.max_vertex_texture_units >= JD_DIFFUSION_VERTEX_UNITS && o->rdesc.levels == JD_LEVELS_AUTO &&
+        !o->rdesc.fragment_thickness) {
         jd_renderer_info info;
         jd_renderer_get_info(s.renderer, &info);
         jd_levels other = info.vertex_levels ? JD_LEVELS_FRAGMENT : JD_LEVELS_VERTEX;

@@ -101,7 +101,7 @@ static const opt table[] = {
     {"--unroll-loops", T_INT, OFF(unroll_loops), 0, 8, JD_OPT_INFO,
      "N          with --compile: dynamic loops at a constant N trips (tools/device-shaders.sh: the cost of a trip) [0: as shipped]"},
     {"--materials", T_FLAG, OFF(list_materials), 0, 0, JD_OPT_INFO, "           list the measured materials, their coefficients and where they come from"},
-    {"--profile", T_STR, OFF(profile), 0, 0, R | B | JD_OPT_INFO, "NAME       emulate a device's limits: generic, vc4, mali400, vivante, adreno3xx"},
+    {"--profile", T_STR, OFF(profile), 0, 0, R | B | JD_OPT_INFO, "NAME       emulate a device's limits: generic, vc4, mali400, vivante, adreno3xx, gc7000l"},
     {"--device", T_STR, OFF(device), 0, 0, B,
      "BOARD      draw with the board's profile and estimate each mode's frame there (jade info --boards)"},
     {"--precision", T_PRECISION, OFF(rdesc.precision), 0, 0, R | B, "P          auto|highp|mediump packing [auto]"},

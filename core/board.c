@@ -41,6 +41,12 @@ const jd_board jd_boards[] = {
      "msm8916.dtsi: the GPU's top operating point 400 MHz; Mesa ir3: scalar instructions, one issue per clock, "
      "nops and repeats counted; APQ8016: 32-bit LPDDR3 at 533 MHz (4.3 GB/s). Vertex reuse: a 16-entry FIFO "
      "(assumed); triangle set-up and the binning pass's vertex shader not modelled", 0, 0},
+    {"imx8mq-gc7000l", "Vivante GC7000Lite at 800 MHz (NXP i.MX8M Quad)", "gc7000l", "etnaviv-gc7000l", 800.0,
+     JD_UNITS_SHARED, 4.0, 4.0, 1.0, 1.0, 2.0, 800.0 / 267.0, 16, 12.8,
+     "NXP i.MX8M reference manual (GPU chapter): GC7000Lite, 4 shaders, up to 800 MHz, 267 Mtri/s, 1.6 Gpixel/s, "
+     "25.6 GFLOPS fp32 (4 cores x a vec4 multiply-add per clock: one instruction per clock each, as GC2000's); "
+     "i.MX8M Quad datasheet: 32-bit LPDDR4-3200 (12.8 GB/s); a 16-entry vertex cache (assumed, as GC2000's). "
+     "Vivante draws in immediate mode: no tile-buffer resolve, bytes as counted", 0, 0},
 };
 const int jd_board_count = (int)(sizeof jd_boards / sizeof jd_boards[0]);
 

@@ -69,6 +69,7 @@ void jd_gl_caps_recognise(jd_gl_caps *caps);
  * docs/frame-cost.md has the meshes measured). */
 #define JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM 3000
 #define JD_VC4_LEVELS_PER_FRAGMENT_FROM 16000
+#define JD_VIVANTE_LEVELS_PER_FRAGMENT_FROM 3000
 /* Whether full's levels are summed in the vertex stage on this GPU for a
  * mesh of `vertices`, with a colour texture or not: where it reads all their
  * textures, has a unit left for the light through thin parts' table

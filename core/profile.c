@@ -34,6 +34,12 @@ const jd_profile jd_profiles[] = {
      "samplers in both stages, 8K textures, fp32 shaders (ir3 lowers mediump to 16-bit registers only from a5xx)",
      "4x multisampling in the EGL config where the driver offers one (resolved in Adreno's on-chip GMEM; Mesa's "
      "freedreno offers none on a3xx); otherwise the pass after the frame", 0, 0, "Adreno 3xx"},
+    {"gc7000l", "Vivante GC7000Lite (NXP i.MX8M Quad; GC3000 in i.MX6 QuadPlus alike)", 8192, 8192, 8192, 8192,
+     1024, 1024, 16, 16, 16, 1, 1,
+     "Mesa etnaviv_screen.c on GC7000 rev 6214 (drm-shim): 1024 uniform vectors per stage, 16 varyings, 16 samplers "
+     "in both stages, 8K textures, fp32 shaders, 32-bit indices; an instruction cache (no program size limit)",
+     "4x multisampling in the EGL config where the driver offers one (Mesa's etnaviv offers one only with "
+     "ETNA_MESA_DEBUG=msaa); otherwise the pass after the frame", 0, 0, "Vivante GC3000-GC7000"},
 };
 const int jd_profile_count = (int)(sizeof jd_profiles / sizeof jd_profiles[0]);
 
@@ -89,6 +95,7 @@ void jd_profile_apply(const jd_profile *p, jd_gl_caps *c)
     /* as "FD307" or "Adreno (TM) 306", "VC4 V3D 2.1" or "VideoCore IV HW" would */
     if (!strcmp(p->name, "adreno3xx")) c->levels_per_fragment_from = JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM;
     if (!strcmp(p->name, "vc4")) c->levels_per_fragment_from = JD_VC4_LEVELS_PER_FRAGMENT_FROM;
+    if (!strcmp(p->name, "gc7000l")) c->levels_per_fragment_from = JD_VIVANTE_LEVELS_PER_FRAGMENT_FROM;
     if (p->max_program_instructions &&
         (!c->max_program_instructions || c->max_program_instructions > p->max_program_instructions))
         c->max_program_instructions = p->max_program_instructions;

@@ -1,7 +1,8 @@
 #!/bin/sh
 # Where full sums its levels (jd_renderer_desc.levels, --levels): on the
 # GPUs whose vertex and fragment programs share their ALUs (Adreno 3xx,
-# VideoCore IV) per vertex on small meshes and per fragment on large ones
+# VideoCore IV, Vivante GC3000 and GC7000) per vertex on small meshes and
+# per fragment on large ones
 # (gl_caps.h, levels_per_fragment_from); per fragment on VideoCore IV with
 # a colour texture, where per vertex full would lose its light through
 # thin parts; per vertex wherever else the vertex stage reads six textures;
@@ -35,6 +36,9 @@ adreno3xx pebble - per_vertex
 vc4 knot - per_fragment
 vc4 knot --simplify=10000 per_vertex
 vc4 pebble - per_fragment
+gc7000l knot - per_fragment
+gc7000l knot --simplify=2000 per_vertex
+gc7000l pebble - per_vertex
 vivante knot --simplify=2000 per_fragment
 mali400 knot --simplify=2000 per_fragment
 adreno3xx knot --levels=vertex per_vertex

@@ -452,8 +452,8 @@ static void test_recognise(void)
         {"etnaviv", "Vivante GC2000 rev 5108", 0, 0, 2000, 0, 256, "Vivante GC400-GC2000"},
         {"etnaviv", "Vivante GC400 rev 4652", 0, 0, 400, 0, 256, "Vivante GC400-GC2000"},
         {"Vivante Corporation", "GC2000 core", 0, 0, 2000, 0, 256, "Vivante GC400-GC2000"},
-        {"etnaviv", "Vivante GC3000 rev 5450", 0, 0, 3000, 0, 0, ""},
-        {"etnaviv", "Vivante GC7000 rev 6214", 0, 0, 7000, 0, 0, ""},
+        {"etnaviv", "Vivante GC3000 rev 5450", 0, 0, 3000, 0, 0, "Vivante GC3000-GC7000"},
+        {"etnaviv", "Vivante GC7000 rev 6214", 0, 0, 7000, 0, 0, "Vivante GC3000-GC7000"},
         {"freedreno", "FD307", 0, 0, 0, 307, 0, "Adreno 3xx"},
         {"Qualcomm", "Adreno (TM) 306", 0, 0, 0, 306, 0, "Adreno 3xx"},
         {"Mesa", "llvmpipe (LLVM 15.0.6, 256 bits)", 0, 0, 0, 0, 0, ""},
@@ -472,15 +472,16 @@ static void test_recognise(void)
               c.small_register_file, c.vivante, c.adreno, c.max_program_instructions);
         CHECK((c.frag_highp_precision == 0) == gpus[i].utgard, "%s: highp %d", gpus[i].renderer, c.frag_highp_precision);
         CHECK(!strcmp(c.tier, gpus[i].tier), "%s: tier '%s', want '%s'", gpus[i].renderer, c.tier, gpus[i].tier);
-        /* Only Adreno 3xx and VideoCore IV sum full's levels per fragment
-         * by their names, on meshes from their sizes on. */
+        /* Only Adreno 3xx, VideoCore IV and Vivante from GC3000 sum full's
+         * levels per fragment by their names, on meshes from their sizes on. */
         int from = gpus[i].adreno >= 300 && gpus[i].adreno < 400 ? JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM
                    : !strcmp(gpus[i].tier, "VideoCore IV")       ? JD_VC4_LEVELS_PER_FRAGMENT_FROM
+                   : gpus[i].vivante >= 3000                     ? JD_VIVANTE_LEVELS_PER_FRAGMENT_FROM
                                                                   : 0;
         CHECK(c.levels_per_fragment_from == from, "%s: levels per fragment from %d vertices", gpus[i].renderer,
               c.levels_per_fragment_from);
     }
-    /* The adreno3xx and vc4 profiles as their names would; no other
+    /* The adreno3xx, vc4 and gc7000l profiles as their names would; no other
      * profile. With the vertex stage's textures (the device's own, 16 here,
      * lowered by the profile), per vertex below the count and per fragment
      * from it. */
@@ -491,6 +492,7 @@ static void test_recognise(void)
         jd_profile_apply(&jd_profiles[i], &c);
         int from = !strcmp(jd_profiles[i].name, "adreno3xx") ? JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM
                    : !strcmp(jd_profiles[i].name, "vc4")     ? JD_VC4_LEVELS_PER_FRAGMENT_FROM
+                   : !strcmp(jd_profiles[i].name, "gc7000l") ? JD_VIVANTE_LEVELS_PER_FRAGMENT_FROM
                                                               : 0;
         CHECK(c.levels_per_fragment_from == from, "profile %s: levels per fragment from %d vertices",
               jd_profiles[i].name, c.levels_per_fragment_from);
@@ -519,6 +521,7 @@ static void test_frame_cost(void)
         "vc4            0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
         "panfrost-t860  0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
         "etnaviv-gc2000 0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
+        "etnaviv-gc7000l 0:fill.vert+fill.frag vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
         "freedreno-a306 0:fill.vert+fill.frag  vs    1 fs    1 spills   0 fills   0 cost vc    1 fc    1 f1    1 f2    1 - ok\n"
         "lima           1:loop.vert+loop.frag  vs    1 fs   69 spills   0 fills   0 cost vc    1 fc   69 f1   56 f2   77 - ok\n";
     static const struct { const char *board; double mpix, mtri; } published[] = {
@@ -528,6 +531,7 @@ static void test_frame_cost(void)
         {"t860-mp4", 3200.0, 0.0},     /* one pixel per clock per core */
         {"imx6q-gc2000", 1188.0, 200.0}, /* 2 pixel pipes at 594 MHz; Freescale: 200 Mtri/s */
         {"sd410-a306", 800.0, 0.0},      /* 0.8 Gpix/s at 400 MHz */
+        {"imx8mq-gc7000l", 1600.0, 267.0}, /* NXP: 1.6 Gpixel/s and 267 Mtri/s at 800 MHz */
     };
     CHECK(jd_frame_cost_largest_program(table, "lima") == 69 && jd_frame_cost_largest_program(table, "etnaviv-gc400") == 0,
           "the largest program: lima %d, a compiler with no rows %d", jd_frame_cost_largest_program(table, "lima"),
