@@ -32,9 +32,10 @@ typedef struct jd_gl_caps {
     int adreno;              /* Adreno model by renderer string ("FD307" from Mesa: 307; "Adreno (TM) 306": 306), or 0 */
     /* The mesh's vertex count from which full's levels are summed per
      * fragment, into a buffer at a lower resolution, even though the vertex
-     * stage could read them; 0: never (Adreno 3xx and VideoCore IV, by name
-     * or profile, set it). Their vertex and fragment programs share one set
-     * of ALUs: the per-vertex sum (ir3's 477 instructions, vc4's 176) on
+     * stage could read them; 0: never (Adreno 3xx, VideoCore IV and Vivante
+     * GC3000-GC7000, by name or profile, set it). Their vertex and fragment
+     * programs share one set of ALUs: the per-vertex sum (ir3's 477
+     * instructions, vc4's 176, GC7000Lite's 313) on
      * every vertex costs more than the buffer's few thousand fragments on
      * large meshes and less on small ones, by the frame-cost model
      * (docs/frame-cost.md). */

@@ -6,18 +6,18 @@
 const jd_profile jd_profiles[] = {
     {"generic", "any GLES 2.0 device: the specification's minimums, no extensions", 2048, 2048, 2048, 2048, 128, 16, 8,
      8, 0, 0, 0, "OpenGL ES 2.0.25, tables 6.18-6.20 (sizes raised to 2048, the smallest jade renders with)",
-     "the pass after the frame (ES 2.0 guarantees no multisampled config)", 0, 0, NULL},
+     "the pass after the frame (ES 2.0 guarantees no multisampled config)", 0, 0, NULL, 0},
     {"vc4", "Raspberry Pi 0-3 (VideoCore IV, Mesa vc4)", 2048, 2048, 2048, 2048, 256, 256, 8, 8, 8, 1, 0,
      "Mesa vc4_screen.c: 2D textures 2048, 8 varyings, samplers in both stages, fp32 (highp) shaders, "
      "8- and 16-bit index buffers only",
      "4x multisampling in the EGL config (resolved in VideoCore IV's tile buffer); a picture the tier draws smaller "
      "and the GPU enlarges has one sample (no EXT_multisampled_render_to_texture): the pass after the frame smooths "
-     "it at its own size", 1, 0, "VideoCore IV"},
+     "it at its own size", 1, 0, "VideoCore IV", JD_VC4_LEVELS_PER_FRAGMENT_FROM},
     {"mali400", "Mali-400/450 (Utgard: ARM driver, Mesa lima)", 4096, 4096, 4096, 1024, 256, 256, 8, 8, 0, 0, 0,
      "ARM gles_config_m200.h / gles2_config_m200.h: 256 uniform vectors per stage, no vertex texture units, "
      "renderbuffers and viewports 4096, cube maps 1024; fragment shaders fp16 only; Mesa lima_screen.c: "
      "8 varyings (the hardware's limit)",
-     "4x multisampling in the EGL config (free on Mali-400's tile buffer)", 1, 0, "Mali-400/450"},
+     "4x multisampling in the EGL config (free on Mali-400's tile buffer)", 1, 0, "Mali-400/450", 0},
     {"vivante", "Vivante GC2000 class (NXP i.MX6 Quad/Dual; STM32MP1's GC400 and i.MX6 DualLite's GC880 below it)",
      8192, 8192, 8192, 8192, 168, 64, 8, 8, 4, 1, 1,
      "Mesa etnaviv_screen.c on GC2000 rev 5108 (drm-shim): 168 vertex and 64 fragment uniform vectors (Vivante's "
@@ -27,19 +27,21 @@ const jd_profile jd_profiles[] = {
      "4x multisampling in the EGL config where the driver offers one (resolved by GC2000's resolve engine: "
      "Vivante draws in immediate mode, the samples cost memory traffic; Mesa's etnaviv offers one only with "
      "ETNA_MESA_DEBUG=msaa); otherwise the pass after the frame", 0, 256,
-     "Vivante GC400-GC2000"},
+     "Vivante GC400-GC2000", 0},
     {"adreno3xx", "Adreno 306/320 (Snapdragon 410/600: Qualcomm's driver, Mesa freedreno)", 8192, 8192, 8192, 8192,
      4096, 4096, 16, 16, 16, 1, 1,
      "Mesa freedreno_screen.c for a3xx as FD307 (Adreno 306) and FD320 report under the drm-shim: 16 varyings, 16 "
      "samplers in both stages, 8K textures, fp32 shaders (ir3 lowers mediump to 16-bit registers only from a5xx)",
      "4x multisampling in the EGL config where the driver offers one (resolved in Adreno's on-chip GMEM; Mesa's "
-     "freedreno offers none on a3xx); otherwise the pass after the frame", 0, 0, "Adreno 3xx"},
+     "freedreno offers none on a3xx); otherwise the pass after the frame", 0, 0, "Adreno 3xx",
+     JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM},
     {"gc7000l", "Vivante GC7000Lite (NXP i.MX8M Quad; GC3000 in i.MX6 QuadPlus alike)", 8192, 8192, 8192, 8192,
      1024, 1024, 16, 16, 16, 1, 1,
      "Mesa etnaviv_screen.c on GC7000 rev 6214 (drm-shim): 1024 uniform vectors per stage, 16 varyings, 16 samplers "
      "in both stages, 8K textures, fp32 shaders, 32-bit indices; an instruction cache (no program size limit)",
      "4x multisampling in the EGL config where the driver offers one (Mesa's etnaviv offers one only with "
-     "ETNA_MESA_DEBUG=msaa); otherwise the pass after the frame", 0, 0, "Vivante GC3000-GC7000"},
+     "ETNA_MESA_DEBUG=msaa); otherwise the pass after the frame", 0, 0, "Vivante GC3000-GC7000",
+     JD_VIVANTE_LEVELS_PER_FRAGMENT_FROM},
 };
 const int jd_profile_count = (int)(sizeof jd_profiles / sizeof jd_profiles[0]);
 
@@ -92,10 +94,7 @@ void jd_profile_apply(const jd_profile *p, jd_gl_caps *c)
     /* The board's GPU itself: what recognising it by name would set. */
     if (p->small_register_file) c->small_register_file = 1;
     if (!strcmp(p->name, "mali400")) c->utgard = 1; /* as the renderer string "Mali-400" would */
-    /* as "FD307" or "Adreno (TM) 306", "VC4 V3D 2.1" or "VideoCore IV HW" would */
-    if (!strcmp(p->name, "adreno3xx")) c->levels_per_fragment_from = JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM;
-    if (!strcmp(p->name, "vc4")) c->levels_per_fragment_from = JD_VC4_LEVELS_PER_FRAGMENT_FROM;
-    if (!strcmp(p->name, "gc7000l")) c->levels_per_fragment_from = JD_VIVANTE_LEVELS_PER_FRAGMENT_FROM;
+    if (p->levels_per_fragment_from) c->levels_per_fragment_from = p->levels_per_fragment_from;
     if (p->max_program_instructions &&
         (!c->max_program_instructions || c->max_program_instructions > p->max_program_instructions))
         c->max_program_instructions = p->max_program_instructions;

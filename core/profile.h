@@ -24,6 +24,7 @@ typedef struct jd_profile {
     int small_register_file;    /* shaders kept small (Mali-400/450, VideoCore IV) */
     int max_program_instructions; /* per stage, 0: no limit known */
     const char *tier;           /* the boards' tier it draws at (docs/frame-cost.md), or NULL */
+    int levels_per_fragment_from; /* gl_caps.h: full's levels per fragment from this vertex count, 0: never */
 } jd_profile;
 
 extern const jd_profile jd_profiles[];

@@ -245,8 +245,9 @@ void main()
     float st = texture2D(u_spec, vec2(dot(v_normal, v_normal) * JD_SPEC_SCALE.x + JD_SPEC_OFFSET.x,
                                       dot(ns, h) * JD_SPEC_SCALE.y + JD_SPEC_OFFSET.y)).r;
 #else
-    // Where there is no table (the levels summed per vertex: Vivante GC3000
-    // and GC7000L, desktops), (n.h / |n|)^shininess.
+    // Where there is no table (the levels summed per vertex: desktops, and
+    // small meshes on the GPUs whose vertices and fragments share their
+    // ALUs, gl_caps.h), (n.h / |n|)^shininess.
     float st = pow(max(dot(normalize(ns), h), 0.0), u_shading.z);
 #endif
     float spec = JD_LIT_V > 0.0 ? vis * st : 0.0;
