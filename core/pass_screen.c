@@ -68,6 +68,24 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
             glUniform3fv(p->spec_x, 1, spec);
         }
         if (p->keep >= 0) glUniform3fv(p->keep, 2, &r->keep[0][0]);
+        if (p->wrap >= 0) {
+            /* The local part's width where it meets the terminator: the
+             * RMS width of its Gaussians (green's weights, and the half
+             * of the first level's it takes on lit points), as an angle
+             * at the surface's radius 1 / k (mesh_curvature.h). Its n.l
+             * ramp smoothed over that angle by a box of the same variance,
+             * half-width e = sqrt(3) sigma k (mesh.vert): u_wrap is e / k
+             * in world units and 1 / 4e times k. */
+            float sw = 0.0f, s2 = 0.0f;
+            for (int k = 0; k <= DIFF_LOCAL; k++) {
+                float wk = fit->weight[k][1];
+                if (k == DIFF_LOCAL) wk *= r->diff_levels > 0 ? DIFF_FIRST_SHARED : 0.0f;
+                sw += wk;
+                s2 += wk * fit->sigma_mm[k] * fit->sigma_mm[k];
+            }
+            float ew = sw > 0.0f ? 1.7320508f * sqrtf(s2 / sw) / f->mm_per_world : 0.0f;
+            glUniform2f(p->wrap, ew, ew > 0.0f ? 0.25f / ew : 1e4f);
+        }
         if (p->bounce_rd >= 0) {
             /* The light between parts leaves the surface it came from and
              * enters this one: an albedo each. The levels' half-resolution

@@ -162,6 +162,7 @@ static void draw_projection(jd_renderer *r)
                               (const void *)(at * sizeof(float)));
         at += (size_t)sizes[i];
     }
+    glDisableVertexAttribArray(5); /* the mesh's curvature: not this buffer's */
     jdr_use_target(r, &r->sh1, "sh-project");
     jdr_counted_read(r, &r->atlas, 1);
     glDrawArrays(GL_TRIANGLES, 0, 6 * 6 * 27);

@@ -12,6 +12,7 @@ void jdr_bind_mesh(GLuint vbo, GLuint ibo)
     glEnableVertexAttribArray(0);
     glEnableVertexAttribArray(1);
     glEnableVertexAttribArray(4);
+    glEnableVertexAttribArray(5);
     /* The position's fourth float is the part's thickness (render_target.c):
      * programs that declare a vec3 position drop it. */
     glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN, (const void *)0);
@@ -19,6 +20,7 @@ void jdr_bind_mesh(GLuint vbo, GLuint ibo)
     /* The light between parts' transfer, last in the vertex (render_target.c). */
     glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN,
                           (const void *)(JDR_STRIDE_PLAIN - JDR_BOUNCE_BYTES));
+    glVertexAttribPointer(5, 2, GL_FLOAT, GL_FALSE, JDR_STRIDE_PLAIN, (const void *)JDR_CURVE_AT(JDR_STRIDE_PLAIN));
 }
 
 void jdr_mesh_attributes(const jd_renderer *r, size_t at)
@@ -27,6 +29,7 @@ void jdr_mesh_attributes(const jd_renderer *r, size_t at)
     glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, st, (const void *)at);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, st, (const void *)(at + 16));
     glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, st, (const void *)(at + (size_t)st - JDR_BOUNCE_BYTES));
+    glVertexAttribPointer(5, 2, GL_FLOAT, GL_FALSE, st, (const void *)(at + (size_t)JDR_CURVE_AT(st)));
     if (!r->albedo) return;
     glEnableVertexAttribArray(2);
     glEnableVertexAttribArray(3);
@@ -39,6 +42,7 @@ void jdr_bind_quad(const jd_renderer *r)
     glBindBuffer(GL_ARRAY_BUFFER, r->quad_vbo);
     glDisableVertexAttribArray(1);
     glDisableVertexAttribArray(4);
+    glDisableVertexAttribArray(5);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 8, (const void *)0);
 }

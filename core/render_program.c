@@ -9,7 +9,7 @@
 #include "gl_program.h"
 #include "program_probe.h"
 
-static const char *const mesh_attribs[] = {"a_position", "a_normal", "a_uv", "a_color", "a_bounce", NULL};
+static const char *const mesh_attribs[] = {"a_position", "a_normal", "a_uv", "a_color", "a_bounce", "a_curve", NULL};
 static const char *const quad_attribs[] = {"a_corner", NULL};
 static const char *const project_attribs[] = {"a_corner", "a_poly0", "a_poly1", "a_channel", "a_texel", NULL};
 
@@ -114,6 +114,7 @@ static void shade_locations(shade_prog *p)
     p->slab_scale = glGetUniformLocation(id, "u_slab_scale");
     p->slab_scale_v = glGetUniformLocation(id, "u_slab_scale_v");
     p->keep = glGetUniformLocation(id, "u_keep");
+    p->wrap = glGetUniformLocation(id, "u_wrap");
     p->bounce_rd = glGetUniformLocation(id, "u_bounce_rd");
     p->spec = glGetUniformLocation(id, "u_spec");
 }

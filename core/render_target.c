@@ -195,12 +195,14 @@ void jdr_free_target(target *t)
  * vertex stage then normalised: 4 bytes a vertex fewer, but lima's full
  * vertex stage took 67 words, 60 without (a square root, a reciprocal and
  * eight operations a vertex). For a mesh with colours its texture
- * coordinates and colour (4 bytes, normalised). Last, the light between
- * parts' transfer (bounce: JD_BOUNCE_TERMS a vertex; NULL: none). */
+ * coordinates and colour (4 bytes, normalised). Then the surface's
+ * curvature, scaled with the positions (curve: NULL: 0, mesh_curvature.h).
+ * Last, the light between parts' transfer (bounce: JD_BOUNCE_TERMS a
+ * vertex; NULL: none). */
 _Static_assert(JDR_BOUNCE_BYTES == JD_BOUNCE_TERMS * sizeof(float), "the transfer's bytes");
 
-static void pack_vertex(uint8_t *o, const jd_mesh *m, const float *thick, const float *bounce, uint32_t i, jd_vec3 c,
-                        float inv_r)
+static void pack_vertex(uint8_t *o, const jd_mesh *m, const float *thick, const float *curve, const float *bounce,
+                        uint32_t i, jd_vec3 c, float inv_r)
 {
     const float *p = m->positions + 3 * (size_t)i, *n = m->normals + 3 * (size_t)i;
     jd_vec3 u = jd_unit_normal(n);
@@ -210,6 +212,9 @@ static void pack_vertex(uint8_t *o, const jd_mesh *m, const float *thick, const 
     float b[JD_BOUNCE_TERMS] = {0};
     if (bounce) memcpy(b, bounce + JD_BOUNCE_TERMS * (size_t)i, sizeof b);
     memcpy(o + jdr_vertex_stride(m) - JDR_BOUNCE_BYTES, b, JDR_BOUNCE_BYTES);
+    float k[2] = {curve ? curve[i] / inv_r : 0.0f, 1e4f};
+    if (k[0] > 1e-4f) k[1] = 1.0f / k[0];
+    memcpy(o + JDR_CURVE_AT(jdr_vertex_stride(m)), k, sizeof k);
     if (!m->colors) {
         memcpy(o, v, 28);
         return;
@@ -224,14 +229,14 @@ static void pack_vertex(uint8_t *o, const jd_mesh *m, const float *thick, const 
 
 int jdr_vertex_stride(const jd_mesh *m) { return m->colors ? JDR_STRIDE_COLOUR : JDR_STRIDE_PLAIN; }
 
-jd_result jdr_upload_mesh(const jd_mesh *m, const float *thick, const float *bounce, jd_vec3 c, float inv_r,
-                          GLuint *vbo, GLuint *ibo, jd_arena *a, jd_error *err)
+jd_result jdr_upload_mesh(const jd_mesh *m, const float *thick, const float *curve, const float *bounce, jd_vec3 c,
+                          float inv_r, GLuint *vbo, GLuint *ibo, jd_arena *a, jd_error *err)
 {
     size_t top = jd_arena_top_mark(a);
     size_t stride = (size_t)jdr_vertex_stride(m);
     uint8_t *v = jd_arena_alloc_top(a, stride * m->num_vertices, 16, "vertex upload scratch", err);
     if (!v) return JD_ERR_BUDGET;
-    for (uint32_t i = 0; i < m->num_vertices; i++) pack_vertex(v + stride * i, m, thick, bounce, i, c, inv_r);
+    for (uint32_t i = 0; i < m->num_vertices; i++) pack_vertex(v + stride * i, m, thick, curve, bounce, i, c, inv_r);
     glGenBuffers(1, vbo);
     glBindBuffer(GL_ARRAY_BUFFER, *vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(stride * m->num_vertices), v, GL_STATIC_DRAW);
@@ -246,8 +251,8 @@ jd_result jdr_upload_mesh(const jd_mesh *m, const float *thick, const float *bou
 /* The mesh as chunks of at most 65,535 distinct vertices each, in triangle
  * order (which meshoptimizer made local: few vertices repeat across
  * chunks). Vertex and index data for every chunk go into one buffer each. */
-jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, const float *thick, const float *bounce, jd_vec3 c,
-                                  float inv_r, jd_arena *a, jd_error *err)
+jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, const float *thick, const float *curve,
+                                  const float *bounce, jd_vec3 c, float inv_r, jd_arena *a, jd_error *err)
 {
     const uint32_t limit = 65535;
     size_t top = jd_arena_top_mark(a);
@@ -285,7 +290,7 @@ jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, const float 
         for (int k = 0; k < 3; k++) {
             if (local[tri[k]] < 0) {
                 if (nv == v_cap) { jd_arena_top_reset(a, top); return jd_fail(err, JD_ERR_BUDGET, "mesh chunks: vertex copies over the scratch"); }
-                pack_vertex(v + stride * nv++, m, thick, bounce, tri[k], c, inv_r);
+                pack_vertex(v + stride * nv++, m, thick, curve, bounce, tri[k], c, inv_r);
                 ch->vertices++;
                 local[tri[k]] = (int32_t)n_used;
                 used[n_used++] = tri[k];

@@ -1,6 +1,7 @@
 #include "renderer_internal.h"
 #include "mesh_bounce.h"
 #include "mesh_carry.h"
+#include "mesh_curvature.h"
 #include "mesh_thickness.h"
 
 #include <math.h>
@@ -241,10 +242,19 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
             jd_mesh_carry(&r->proxy, cp, cbounce, JD_BOUNCE_TERMS, reach, 0.0f, a, pbounce, NULL))
             bounce = pbounce = NULL;
     }
-    if ((chunked ? (res = jdr_upload_mesh_chunked(r, m, thick, bounce, c, 1.0f / radius, a, err))
-                 : (res = jdr_upload_mesh(m, thick, bounce, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a, err))) ||
-        (res = jdr_upload_mesh(&r->proxy, pthick, pbounce, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a, err)) ||
-        (res = jdr_upload_mesh(&r->capture_proxy, NULL, NULL, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a, err)) ||
+    /* The surface's curvature at the mesh's vertices, for full's local part
+     * past the terminator (mesh_curvature.c; the proxies' programs do not
+     * read it). Where it does not fit the budget, none: the terminator as
+     * sharp as n.l makes it. */
+    float *curve = jd_arena_alloc_top(a, sizeof(float) * m->num_vertices, 16, "curvature", NULL);
+    if (curve && jd_mesh_curvature(m, a, curve, NULL)) curve = NULL;
+    if ((chunked ? (res = jdr_upload_mesh_chunked(r, m, thick, curve, bounce, c, 1.0f / radius, a, err))
+                 : (res = jdr_upload_mesh(m, thick, curve, bounce, c, 1.0f / radius, &r->mesh_vbo, &r->mesh_ibo, a,
+                                          err))) ||
+        (res = jdr_upload_mesh(&r->proxy, pthick, NULL, pbounce, c, 1.0f / radius, &r->proxy_vbo, &r->proxy_ibo, a,
+                               err)) ||
+        (res = jdr_upload_mesh(&r->capture_proxy, NULL, NULL, NULL, c, 1.0f / radius, &r->cap_vbo, &r->cap_ibo, a,
+                               err)) ||
         (res = jdr_upload_albedo(r, m, a, err))) {
         jd_arena_top_reset(a, thick_top);
         goto fail;

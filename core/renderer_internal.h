@@ -63,7 +63,7 @@ typedef struct shade_prog {
     GLint amb_x, local_x, wide_x, spec_x; /* full's constant factors (shade.frag) */
     GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
     GLint albedo_norm, albedo_map, albedo_reach;
-    GLint slab, slab_v, slab_scale, slab_scale_v, keep, bounce_rd;
+    GLint slab, slab_v, slab_scale, slab_scale_v, keep, bounce_rd, wrap;
     GLint soft_c; /* full: the exponential shadow map's exponent (light.glsl, jd_soft_lit) */
     GLint spec;   /* full, the levels read from the half-resolution pass: the highlight's table */
 } shade_prog;
@@ -252,11 +252,13 @@ typedef struct frame_params {
 /* render_target.c */
 /* Bytes per uploaded vertex: position with the part's thickness as its
  * fourth float, and the unit normal; with colours, texture coordinates and
- * the colour's 4 bytes too; last, the light between parts' transfer (4
- * floats, mesh_bounce.h). */
-#define JDR_STRIDE_PLAIN 44
-#define JDR_STRIDE_COLOUR 56
+ * the colour's 4 bytes too; then the surface's curvature (two floats, k and 1 / k,
+ * mesh_curvature.h); last, the light between parts' transfer (4 floats,
+ * mesh_bounce.h). */
+#define JDR_STRIDE_PLAIN 52
+#define JDR_STRIDE_COLOUR 64
 #define JDR_BOUNCE_BYTES 16
+#define JDR_CURVE_AT(stride) ((stride) - JDR_BOUNCE_BYTES - 8)
 int jdr_vertex_stride(const jd_mesh *m);
 jd_result jdr_upload_albedo(jd_renderer *r, const jd_mesh *m, jd_arena *a, jd_error *err);
 GLuint jdr_new_texture(int w, int h, GLint filter);
@@ -268,15 +270,16 @@ jd_result jdr_make_target_ms(jd_renderer *r, target *t, int w, int h, int with_d
 jd_result jdr_make_cube_target(jd_renderer *r, target *faces, int size, const char *what, jd_error *err);
 void jdr_free_target(target *t);
 jd_result jdr_fit_target(jd_renderer *r, target *t, int w, int h, int linear, const char *what, jd_error *err);
-jd_result jdr_upload_mesh(const jd_mesh *m, const float *thick, const float *bounce, jd_vec3 c, float inv_r,
-                          GLuint *vbo, GLuint *ibo, jd_arena *a, jd_error *err);
-jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, const float *thick, const float *bounce, jd_vec3 c,
-                                  float inv_r, jd_arena *a, jd_error *err);
+jd_result jdr_upload_mesh(const jd_mesh *m, const float *thick, const float *curve, const float *bounce, jd_vec3 c,
+                          float inv_r, GLuint *vbo, GLuint *ibo, jd_arena *a, jd_error *err);
+jd_result jdr_upload_mesh_chunked(jd_renderer *r, const jd_mesh *m, const float *thick, const float *curve,
+                                  const float *bounce, jd_vec3 c, float inv_r, jd_arena *a, jd_error *err);
 
 /* render_draw.c */
 void jdr_bind_mesh(GLuint vbo, GLuint ibo);
 /* The vertex attributes of the whole mesh from byte `at` of its buffer
- * (a chunk's first vertex): position, normal and, with colours, 2 and 3. */
+ * (a chunk's first vertex): position, normal, curvature, the transfer and,
+ * with colours, 2 and 3. */
 void jdr_mesh_attributes(const jd_renderer *r, size_t at);
 void jdr_bind_quad(const jd_renderer *r);
 void jdr_count_target(jd_renderer *r, const char *what, int w, int h);

@@ -53,6 +53,8 @@ varying vec3 v_uv;             // texture coordinates, the entry's mip bias
 // between its vertices' (a 12-triangle cube close up: 2 of 255 at most).
 uniform mediump vec3 u_light_dir; // shared with the fragment stage: precisions must match
 uniform vec2 u_fresnel;      // jd_fresnel_tc's fit at the scene's eta
+uniform vec2 u_wrap;        // the terminator's smoothing (below; pass_screen.c)
+attribute vec2 a_curve;      // the surface's curvature k and 1 / k (mesh_curvature.h)
 #if JD_WIDE_BUFFER
 // Where the levels' sum comes from its buffer (Utgard; Vivante GC400 to
 // GC2000; Adreno 3xx since 2026-12-06), the local part's light is made
@@ -212,7 +214,22 @@ void main()
     // same values, bit for bit; lima's vertex stage 60 -> 50 words (with a
     // colour 69 -> 65), and this stage runs on every vertex of the mesh.
     float dvf = dot(an, vf), dlf = dot(an, u_light_dir);
-    float ndl_v = max(dvf < 0.0 ? -dlf : dlf, 0.0);
+    float xl = dvf < 0.0 ? -dlf : dlf;
+    // The local part's n.l smoothed over the terminator: light that enters
+    // on the lit side diffuses round a curved surface into its shade, as far
+    // as the part's width (sigma, millimetres) is an angle at the surface's
+    // radius (1 / k, the attribute's; Penner and Borshukov's pre-integrated
+    // skin shading tabulates the same). The ramp max(n.l, 0) averaged over
+    // +-e, a box of the Gaussian's variance (e = sqrt(3) sigma k, at most 1):
+    // (n.l + e)^2 / 4e within e of the terminator, n.l beyond. u_wrap: e / k
+    // and 1 / 4e times k (pass_screen.c); a_curve: k and 1 / k. A thin
+    // tube's or a leg's shaded side is no longer dark from the terminator
+    // on, where Cycles' is not: the knot 0.693 -> 0.662 of none's error
+    // against Cycles, the cow back-lit 10-12% closer (docs/quality.md,
+    // "The terminator"). lima's vertex stage 50 -> 60 words.
+    float e = min(u_wrap.x * a_curve.x, 1.0), q = max(u_wrap.y * a_curve.y, 0.25);
+    float t = max(xl + e, 0.0);
+    float ndl_v = xl < e ? t * t * q : xl;
     // n.l is 0 on a face turned from the light: keep counts only where lit.
     float fl = ndl_v * jd_fresnel_tc(ndl_v, u_fresnel) * keep.g, fv = jd_fresnel_tc(abs(dvf), u_fresnel);
     vec3 hv = normalize(u_light_dir + vf);

@@ -45,6 +45,11 @@ fi
 # the generic profile's figures are mali400's on llvmpipe. vc4 sums the
 # levels per fragment at half resolution as mali400 does (gl_caps.h), at
 # fp32: until 2026-12-06 it summed them per vertex, 0.03039 / 0.00580.
+# Since 2026-12-07 full's local part is smoothed over the terminator, which
+# the reference lacks and Cycles has (docs/quality.md, "The terminator"):
+# the RMSE against the reference 0.03039 -> 0.03528 on the machine's GL
+# (mali400 0.03017 -> 0.03494, vc4 0.03065 -> 0.03552), the high-pass
+# 0.00580 -> 0.00561 (0.00608 -> 0.00597, 0.00606 -> 0.00597).
 while read -r profile rmse_today hp_today; do
     set -- --profile "$profile"
     name="$profile profile"
@@ -60,9 +65,9 @@ while read -r profile rmse_today hp_today; do
     echo "note full, $name: high-pass $hp is $(awk -v h="$hp" 'BEGIN { printf "%.1f", h / 0.0027 }') times the goal (0.0027, twice the reference's own noise)"
     [ "$profile" = none ] && full_hp=$hp
 done <<'CASES'
-none 0.03039 0.00580
-mali400 0.03017 0.00608
-vc4 0.03065 0.00606
+none 0.03528 0.00561
+mali400 0.03494 0.00597
+vc4 0.03552 0.00597
 CASES
 
 # The measure must tell a blotchy picture: none (no diffusion of the light

@@ -105,20 +105,21 @@ while read -r mat light az el ref_today full_today wref_today wfull_today dref d
         closer "$mat back: full closer than none to the walk" "$wfull" "$wnone"
     fi
 done <<'CASES'
-marble front -30 40 0.0426 0.0421 0.0524 0.0508 0.0673 0.0493 0.0679 0.0286 0.0414 0.0663
-marble back 170 35 0.0569 0.0604 0.0423 0.0441 0.0721 0.0561 0.0678 0.0391 0.0214 0.0669
-skin1 front -30 40 0.0250 0.0360 0.0685 0.0561 0.0529 0.0838 0.0396 0.0200 0.0660 0.0403
-skin1 back 170 35 0.0437 0.0507 0.0238 0.0319 0.0711 0.0494 0.0528 0.0394 0.0188 0.0504
+marble front -30 40 0.0426 0.0394 0.0524 0.0491 0.0673 0.0493 0.0679 0.0286 0.0414 0.0663
+marble back 170 35 0.0569 0.0565 0.0423 0.0424 0.0721 0.0561 0.0678 0.0391 0.0214 0.0669
+skin1 front -30 40 0.0250 0.0343 0.0685 0.0549 0.0529 0.0838 0.0396 0.0200 0.0660 0.0403
+skin1 back 170 35 0.0437 0.0482 0.0238 0.0309 0.0711 0.0494 0.0528 0.0394 0.0188 0.0504
 ketchup front -30 40 0.0143 0.0204 0.0609 0.0677 0.0324 0.0811 0.0171 0.0130 0.0594 0.0160
 ketchup back 170 35 0.0268 0.0356 0.0314 0.0394 0.0443 0.0508 0.0329 0.0258 0.0299 0.0277
-wholemilk front -30 40 0.0413 0.0426 0.0478 0.0479 0.0672 0.0499 0.0677 0.0274 0.0370 0.0653
-wholemilk back 170 35 0.0545 0.0583 0.0419 0.0438 0.0689 0.0545 0.0652 0.0354 0.0209 0.0649
+wholemilk front -30 40 0.0413 0.0396 0.0478 0.0459 0.0672 0.0499 0.0677 0.0274 0.0370 0.0653
+wholemilk back 170 35 0.0545 0.0550 0.0419 0.0423 0.0689 0.0545 0.0652 0.0354 0.0209 0.0649
 CASES
 # full against none, the issue's measure (#28: 0.25 the target): 0.764
-# before full carried the light between parts, 0.693 since.
+# before full carried the light between parts, 0.693 then, 0.662 since its
+# local part is smoothed over the terminator (2026-12-07).
 gm=$(awk -v s="$ratiosum" 'BEGIN { printf "%.3f", exp(s / 8) }')
 echo "full's RMSE over none's against the medium, geometric mean of 8: $gm (the target 0.25)"
-closer "full over none, geometric mean of 8" "$gm" 0.72
+closer "full over none, geometric mean of 8" "$gm" 0.70
 gm=$(awk -v s="$logsum" 'BEGIN { printf "%.3f", exp(s / 16) }')
 closer "the reference's RMSE over the dipole-albedo reference's, geometric mean of 16" "$gm" 0.9
 # Light carried across thin parts (Donner & Jensen's multipole, measured

@@ -6,6 +6,7 @@
 
 #include "arena.h"
 #include "check.h"
+#include "mesh_curvature.h"
 #include "mesh_thickness.h"
 #include "mesh_bounce.h"
 #include "mesh_grid.h"
@@ -188,6 +189,60 @@ static void test_proxy_thin(void)
     jd_arena_init(&a, big, sizeof big);
     CHECK(jd_mesh_build_proxy(&b, 64, &a, &proxy, &err) == JD_OK && proxy.num_vertices == CELLS,
           "past 65,535 clusters the proxy takes one a cell (%u vertices): %s", proxy.num_vertices, err.msg);
+}
+
+/* The surface's curvature at each vertex (mesh_curvature.c), the larger
+ * principal one: a sphere of radius 2 is 1/2 everywhere, a tube of radius
+ * 1 is 1 (round it; 0 along it), a flat grid 0. On a latitude-longitude
+ * grid of each, away from the sphere's poles and the tube's open ends. */
+static void test_curvature(void)
+{
+    static unsigned char mem[1 << 18];
+    jd_arena a;
+    jd_error err = {0};
+    enum { R = 24, C = 48 }; /* rows (latitude or along the tube), columns round it */
+    static float pos[(R + 1) * C * 3], nrm[(R + 1) * C * 3], k[(R + 1) * C];
+    static uint32_t idx[R * C * 6];
+    for (int shape = 0; shape < 3; shape++) {
+        jd_arena_init(&a, mem, sizeof mem);
+        uint32_t n = 0;
+        for (int i = 0; i <= R; i++)
+            for (int j = 0; j < C; j++) {
+                float *p = pos + 3 * (i * C + j), *q = nrm + 3 * (i * C + j);
+                double ph = 2.0 * M_PI * j / C, th = M_PI * i / R;
+                if (shape == 0) { /* sphere, radius 2 */
+                    q[0] = (float)(sin(th) * cos(ph)), q[1] = (float)cos(th), q[2] = (float)(sin(th) * sin(ph));
+                    p[0] = 2.0f * q[0], p[1] = 2.0f * q[1], p[2] = 2.0f * q[2];
+                } else if (shape == 1) { /* tube along y, radius 1, 0.25 a row */
+                    q[0] = (float)cos(ph), q[1] = 0.0f, q[2] = (float)sin(ph);
+                    p[0] = q[0], p[1] = 0.25f * (float)i, p[2] = q[2];
+                } else { /* a flat grid, y up */
+                    q[0] = q[2] = 0.0f, q[1] = 1.0f;
+                    p[0] = 0.25f * (float)j, p[1] = 0.0f, p[2] = 0.25f * (float)i;
+                }
+            }
+        for (int i = 0; i < R; i++)
+            for (int j = 0; j + (shape == 2) < C; j++) {
+                uint32_t a0 = (uint32_t)(i * C + j), a1 = (uint32_t)(i * C + (j + 1) % C), b0 = a0 + C, b1 = a1 + C;
+                uint32_t t[6] = {a0, b0, a1, a1, b0, b1};
+                for (int e = 0; e < 6; e++) idx[n++] = t[e];
+            }
+        jd_mesh m = {0};
+        m.num_vertices = (R + 1) * C;
+        m.positions = pos;
+        m.normals = nrm;
+        CHECK(jd_mesh_set_indices(&m, idx, n, 1, &a, &err) == JD_OK, "curvature test indices: %s", err.msg);
+        CHECK(jd_mesh_curvature(&m, &a, k, &err) == JD_OK, "curvature: %s", err.msg);
+        float want = shape == 0 ? 0.5f : shape == 1 ? 1.0f : 0.0f, lo = 1e9f, hi = -1e9f;
+        for (int i = 4; i <= R - 4; i++)
+            for (int j = 4; j < C - 4; j++) {
+                lo = fminf(lo, k[i * C + j]);
+                hi = fmaxf(hi, k[i * C + j]);
+            }
+        CHECK(lo >= want * 0.85f - 1e-4f && hi <= want * 1.15f + 1e-4f, "%s: curvature %g to %g, want %g",
+              shape == 0 ? "a sphere of radius 2" : shape == 1 ? "a tube of radius 1" : "a flat grid", (double)lo,
+              (double)hi, (double)want);
+    }
 }
 
 /* The light between parts (mesh_bounce.c) on an L of a floor and a wall,
@@ -601,6 +656,7 @@ int main(void)
     test_mesh();
     test_orientation();
     test_proxy_thin();
+    test_curvature();
     test_bounce();
     test_materials();
     test_draco_header();
