@@ -252,9 +252,9 @@ typedef struct frame_params {
 /* render_target.c */
 /* Bytes per uploaded vertex: position with the part's thickness as its
  * fourth float, and the unit normal; with colours, texture coordinates and
- * the colour's 4 bytes too; then the surface's curvature (two floats, k and 1 / k,
- * mesh_curvature.h); last, the light between parts' transfer (4 floats,
- * mesh_bounce.h). */
+ * the colour's 4 bytes too; then the surface's curvature (two floats, k
+ * and 1 / k, mesh_curvature.h); last, the light between parts' transfer (4
+ * floats, mesh_bounce.h). */
 #define JDR_STRIDE_PLAIN 52
 #define JDR_STRIDE_COLOUR 64
 #define JDR_BOUNCE_BYTES 16
