@@ -196,7 +196,8 @@ void jdr_free_target(target *t)
  * vertex stage took 67 words, 60 without (a square root, a reciprocal and
  * eight operations a vertex). For a mesh with colours its texture
  * coordinates and colour (4 bytes, normalised). Then the surface's
- * curvature, scaled with the positions (curve: NULL: 0, mesh_curvature.h).
+ * curvature k, scaled with the positions, and 1 / k (curve: NULL: 0;
+ * mesh_curvature.h; the shader's 1 / 4e without a reciprocal there).
  * Last, the light between parts' transfer (bounce: JD_BOUNCE_TERMS a
  * vertex; NULL: none). */
 _Static_assert(JDR_BOUNCE_BYTES == JD_BOUNCE_TERMS * sizeof(float), "the transfer's bytes");
