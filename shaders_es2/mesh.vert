@@ -226,12 +226,16 @@ void main()
     // tube's or a leg's shaded side is no longer dark from the terminator
     // on, where Cycles' is not: the knot 0.693 -> 0.662 of none's error
     // against Cycles, the cow back-lit 10-12% closer (docs/quality.md,
-    // "The terminator"). lima's vertex stage 50 -> 60 words.
-    float e = min(u_wrap.x * a_curve.x, 1.0), q = max(u_wrap.y * a_curve.y, 0.25);
+    // "The terminator"). lima's vertex stage 50 -> 57 words: grouped as
+    // its compiler took it shortest, t (t q) and n.l (F keep); left to
+    // right, t t q and n.l F keep, 60 (a search over 180 equivalent forms,
+    // 2026-12-07: none shorter than 57; its scheduler is not monotonic,
+    // and dropping keep entirely gave 64).
+    float e = min(a_curve.x * u_wrap.x, 1.0), q = max(a_curve.y * u_wrap.y, 0.25);
     float t = max(xl + e, 0.0);
-    float ndl_v = xl < e ? t * t * q : xl;
+    float ndl_v = xl < e ? t * (t * q) : xl;
     // n.l is 0 on a face turned from the light: keep counts only where lit.
-    float fl = ndl_v * jd_fresnel_tc(ndl_v, u_fresnel) * keep.g, fv = jd_fresnel_tc(abs(dvf), u_fresnel);
+    float fl = ndl_v * (jd_fresnel_tc(ndl_v, u_fresnel) * keep.g), fv = jd_fresnel_tc(abs(dvf), u_fresnel);
     vec3 hv = normalize(u_light_dir + vf);
 #if JD_WIDE_BUFFER
     v_fresnel = vec4(u_local_x * fl, fv);
