@@ -292,6 +292,22 @@ static void irr_chunk(void *ctx, long b, long e, uint64_t *evals)
             p->ea[k] = ei[k] * p->area * (r->pt_alb ? r->pt_alb[3 * i + k] : 1.0f);
             p->p[k] = pw[k] * r->mm_per_world; /* the octree works in millimetres */
         }
+        /* Where the light enters at a slant it goes on along its refracted
+         * direction before it first scatters, 1 / sigma_t on average
+         * (green's): the dipole's source sits below that point, not below
+         * where it entered. Its tangential part, |l_t| / eta, moves the
+         * sample (weighted by the direct light's share of its irradiance);
+         * its depth stays z_r. The light near the terminator so reaches
+         * the shade past it, as the path tracer shows (docs/quality.md,
+         * "The light's entry, moved along its ray"). */
+        if (!r->d.irradiance && ei[1] > 0) {
+            float ndl = dot3(n, r->light);
+            float direct = ei[1] - r->d.scene.ambient - (r->ind ? r->ind[3 * i + 1] : 0.0f);
+            if (ndl > 0 && direct > 0) {
+                float d = (float)(direct / ei[1] / (r->view.eta * r->dp.sigma_t[1]));
+                for (int k = 0; k < 3; k++) p->p[k] -= (r->light[k] - n[k] * ndl) * d;
+            }
+        }
         if (!r->d.half_space && !r->d.volume) carry_across(r, pw, n, p, &r->pts[((irr_ctx *)ctx)->n + i]);
     }
 }
