@@ -3,8 +3,31 @@
 #include <string.h>
 
 #include "commands.h"
+#include "display_curve.h"
 #include "image_out.h"
 #include "session.h"
+
+/* The still drawn at n times its size each way, each n x n block averaged
+ * in linear light into one pixel (its alpha as it is), in place: the box
+ * over the pixel that the reference's rays and Cycles' box filter take.
+ * Row by row from the top, so no source row is overwritten before it is
+ * read (the output's row y ends where the source's row n y begins). */
+static void shrink_box(uint8_t *px, int w, int h, int n)
+{
+    const float inv = 1.0f / (float)(n * n);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            float sum[4] = {0, 0, 0, 0};
+            for (int j = 0; j < n; j++) {
+                const uint8_t *row = px + ((size_t)(y * n + j) * (size_t)(w * n) + (size_t)x * n) * 4;
+                for (int i = 0; i < n; i++)
+                    for (int c = 0; c < 4; c++) sum[c] += c < 3 ? jd_display_to_linear(row[4 * i + c]) : row[4 * i + c];
+            }
+            uint8_t *o = px + ((size_t)y * w + x) * 4;
+            for (int c = 0; c < 3; c++) o[c] = jd_display_encode(sum[c] * inv);
+            o[3] = (uint8_t)(sum[3] * inv + 0.5f);
+        }
+}
 
 int jd_cmd_render(int argc, char **argv)
 {
@@ -16,6 +39,28 @@ int jd_cmd_render(int argc, char **argv)
     if (rc >= 0) return rc;
     if (!o.frames) o.frames = 1;
     if (o.sheet) o.out = NULL; /* the sheet is the only picture written: --out is not checked */
+    /* --pixel-samples N: a still whose edges are averaged over each pixel,
+     * as the reference and a path tracer average them (a silhouette drawn
+     * with one sample and the pass after the frame is not a pixel's
+     * coverage: the knot at 128x128 against Cycles, a quarter of its
+     * pixels on an outline, docs/quality.md). Drawn at N times the size
+     * without the pass after the frame and at the full resolution of that
+     * size (no tier's enlarging), then shrunk (shrink_box). */
+    const int ps = o.pixel_samples > 1 ? o.pixel_samples : 1;
+    if (ps > 1) {
+        if (o.sheet) {
+            fprintf(stderr, "jade render: --pixel-samples: not with --sheet (a still of one mode)\n");
+            return 2;
+        }
+        if (o.width * ps > 4096 || o.height * ps > 4096) {
+            fprintf(stderr, "jade render: --pixel-samples %d at %dx%d draws %dx%d, over 4096 a side\n", ps, o.width,
+                    o.height, o.width * ps, o.height * ps);
+            return 2;
+        }
+        o.width *= ps, o.height *= ps;
+        if (o.rdesc.antialias == JD_AA_AUTO) o.rdesc.antialias = JD_AA_OFF;
+        if (o.rdesc.render_scale == 0.0f) o.rdesc.render_scale = 1.0f;
+    }
 
     jd_session s;
     if (!jd_session_open(&s, &o, "render")) { jd_session_close(&s); return 1; }
@@ -65,9 +110,10 @@ int jd_cmd_render(int argc, char **argv)
             jd_session_close(&s);
             return 1;
         }
+        if (ps > 1) shrink_box(px, o.width / ps, o.height / ps, ps);
         read_ms = jd_clock_ms() - t1;
         jd_frame_name(o.out, i, name, sizeof name, &err);
-        if (jd_png_write(name, o.width, o.height, px, &err)) {
+        if (jd_png_write(name, o.width / ps, o.height / ps, px, &err)) {
             fprintf(stderr, "jade render: %s\n", err.msg);
             jd_session_close(&s);
             return 1;
@@ -83,8 +129,10 @@ int jd_cmd_render(int argc, char **argv)
                (double)o.light_step);
     else
         printf("wrote %s (", last);
-    printf("%dx%d, %s, %s, mesh %s: %s)\n", o.width, o.height, jd_mode_name(o.scene.mode), o.material,
-           s.mesh_path, jd_session_triangles(&s, tri, sizeof tri));
+    printf("%dx%d", o.width / ps, o.height / ps);
+    if (ps > 1) printf(" from %dx%d, %d x %d samples a pixel", o.width, o.height, ps, ps);
+    printf(", %s, %s, mesh %s: %s)\n", jd_mode_name(o.scene.mode), o.material, s.mesh_path,
+           jd_session_triangles(&s, tri, sizeof tri));
     printf("frame %.1f ms (after a warm-up frame), readback %.1f ms, first frame %.0f ms after start, "
            "decode %.1f ms, arena peak %zu bytes, render targets %zu bytes",
            frame_ms, read_ms, first_ms, s.load.decode_ms, s.arena.peak, info.target_bytes);

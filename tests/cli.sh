@@ -38,6 +38,12 @@ expect "light map not a power of two" 1 "light map size 200 must be a power of t
 # A diffusion texel past 16 x 16 light-map texels: its loop read part of the square.
 expect "diffusion texel over 16 light-map texels a side" 1 "diffusion texel gathers at most 16 x 16 light-map texels (diffusion size at least 64)" -- "$jade" render --light-map 1024 --diffusion-size 32 --out "$tmp/ds.png"
 expect "option=value" 0 "wrote $tmp/eq.png (48x32" -- "$jade" render --size=48x32 --out="$tmp/eq.png" --mode=none
+# --pixel-samples: drawn at N times the size, written at the size asked.
+expect "pixel samples" 0 "wrote $tmp/ps.png (48x32 from 144x96, 3 x 3 samples a pixel" -- "$jade" render --size 48x32 --pixel-samples 3 --out "$tmp/ps.png" --mode none
+expect "pixel samples, the picture's size" 0 "rmse" -- "$jade" metric "$tmp/ps.png" "$tmp/eq.png"
+expect "pixel samples out of range" 2 "expected a whole number from 1 to 8, got '9'" -- "$jade" render --pixel-samples 9 --out "$tmp/ps9.png"
+expect "pixel samples over the largest size" 2 "draws 4160x2080, over 4096 a side" -- "$jade" render --size 520x260 --pixel-samples 8 --out "$tmp/ps8.png"
+expect "pixel samples with a sheet" 2 "not with --sheet" -- "$jade" render --pixel-samples 2 --sheet "$tmp/pss.png"
 expect "flag=value" 2 "takes no value" -- "$jade" render --no-cull=1
 expect "did you mean" 2 "did you mean --frames?" -- "$jade" render --frame 3
 long=1.$(printf '0%.0s' $(seq 1 300))1
@@ -166,6 +172,7 @@ expect "render bad profile" 2 "unknown profile 'ps2'" -- "$jade" render --profil
 # Outputs never destroy anything; inputs that are not regular files (a FIFO
 # would block) or that declare huge pictures are refused at once.
 check() { if eval "$2"; then pass=$((pass + 1)); echo "ok   $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi; }
+check "no picture from a refused --pixel-samples" '[ ! -e "$tmp/ps9.png" ] && [ ! -e "$tmp/ps8.png" ] && [ ! -e "$tmp/pss.png" ]'
 mesh=$(dirname "$0")/../assets/default.drc
 cp "$mesh" "$tmp/m.drc"
 expect "out onto the mesh" 1 "is one of this run's inputs" -- "$jade" render --mesh "$tmp/m.drc" --size 32x32 --out "$tmp/m.drc"

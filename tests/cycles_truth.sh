@@ -60,9 +60,14 @@ while read -r mat light az el ref_today full_today wref_today wfull_today dref d
     # shellcheck disable=SC2086
     "$jade" reference $scene --pixel-samples 3 --quiet --out "$tmp/reference.png" --mask "$tmp/mask.png" >/dev/null ||
         { bad "jade reference did not run ($mat, $light)"; continue; }
+    # none and full at 3 x 3 samples a pixel, as the reference's rays and
+    # Cycles' box filter average it (jade render --pixel-samples): drawn
+    # with one sample and the pass after the frame, the knot's outlines (a
+    # quarter of its pixels at 128x128) took full 21% further from Cycles
+    # in geometric mean and none 6% (full over none 0.662, not 0.583).
     for m in none full; do
         # shellcheck disable=SC2086
-        "$jade" render $scene --mode $m --out "$tmp/$m.png" >/dev/null 2>&1 || bad "jade render --mode $m did not run"
+        "$jade" render $scene --mode $m --pixel-samples 3 --out "$tmp/$m.png" >/dev/null 2>&1 || bad "jade render --mode $m did not run"
     done
     ref=$(rmse "$tmp/reference.png" "$truth") none=$(rmse "$tmp/none.png" "$truth") full=$(rmse "$tmp/full.png" "$truth")
     echo "$mat, $light-lit: RMSE against Cycles: jade reference $ref (best gain $(gain "$tmp/reference.png" "$truth")), none $none, full $full"
@@ -87,14 +92,17 @@ while read -r mat light az el ref_today full_today wref_today wfull_today dref d
         # full carries the light between parts too (core/mesh_bounce.c):
         # the reference that has it is the one to be closer than full.
         closer "$mat $light: jade reference with light between parts closer than full to the medium" "$bref" "$full"
-        # Since the light's entry moves along its refracted ray (2026-12-07,
-        # reference/ref_render.c) the reference without the bounce is closer
-        # than full too, in all eight (before, not marble or whole milk
-        # front-lit, nor marble back-lit). Against the walk, whose entry is
-        # diffuse (no ray to move along), the move takes the reference
-        # further in five of the eight and the bounced one in seven: its
-        # bounds there are today's.
-        closer "$mat $light: jade reference closer than full to the medium" "$ref" "$full"
+        # Without the bounce the reference is closer than full in the
+        # absorbing materials (skin1, ketchup), not in marble or whole milk,
+        # whose light between parts full has and it lacks: printed, not
+        # held. (With full drawn at one sample a pixel, its outlines took it
+        # further, and the reference without the bounce was closer in all
+        # eight since its entry moved along the refracted ray, 2026-12-07.)
+        # Against the walk, whose entry is diffuse (no ray to move along),
+        # that move took the reference further in five of the eight and the
+        # bounced one in seven: its bounds there are today's.
+        if awk -v a="$ref" -v b="$full" 'BEGIN { exit !(a < b) }'; then echo "$mat $light: the reference without light between parts closer than full"
+        else echo "$mat $light: full closer than the reference without light between parts"; fi
         bouncesum=$(awk -v s="$bouncesum" -v a="$bref" -v b="$ref" -v c="$bwref" -v d="$wref" 'BEGIN { print s + log(a / b) + log(c / d) }')
     else bad "jade reference --bounces 1 did not run ($mat, $light)"; fi
     case $mat in skin1 | ketchup) closer "$mat $light: the exact albedo brings the reference closer to the walk than the dipole's" "$wref" "$dwref" ;; esac
@@ -111,21 +119,22 @@ while read -r mat light az el ref_today full_today wref_today wfull_today dref d
         closer "$mat back: full closer than none to the walk" "$wfull" "$wnone"
     fi
 done <<'CASES'
-marble front -30 40 0.0341 0.0394 0.0507 0.0491 0.0673 0.0493 0.0679 0.0221 0.0428 0.0663
-marble back 170 35 0.0474 0.0565 0.0408 0.0424 0.0721 0.0561 0.0678 0.0281 0.0238 0.0669
-skin1 front -30 40 0.0220 0.0343 0.0747 0.0549 0.0529 0.0838 0.0396 0.0180 0.0727 0.0403
-skin1 back 170 35 0.0331 0.0482 0.0243 0.0309 0.0711 0.0494 0.0528 0.0288 0.0215 0.0504
-ketchup front -30 40 0.0142 0.0204 0.0622 0.0677 0.0324 0.0811 0.0171 0.0129 0.0608 0.0160
-ketchup back 170 35 0.0248 0.0356 0.0302 0.0394 0.0443 0.0508 0.0329 0.0240 0.0289 0.0277
-wholemilk front -30 40 0.0338 0.0396 0.0453 0.0459 0.0672 0.0499 0.0677 0.0218 0.0375 0.0653
-wholemilk back 170 35 0.0466 0.0550 0.0407 0.0423 0.0689 0.0545 0.0652 0.0260 0.0230 0.0649
+marble front -30 40 0.0341 0.0297 0.0507 0.0341 0.0673 0.0493 0.0679 0.0221 0.0428 0.0663
+marble back 170 35 0.0474 0.0408 0.0408 0.0250 0.0721 0.0561 0.0678 0.0281 0.0238 0.0669
+skin1 front -30 40 0.0220 0.0318 0.0747 0.0512 0.0529 0.0838 0.0396 0.0180 0.0727 0.0403
+skin1 back 170 35 0.0331 0.0437 0.0243 0.0247 0.0711 0.0494 0.0528 0.0288 0.0215 0.0504
+ketchup front -30 40 0.0142 0.0200 0.0622 0.0676 0.0324 0.0811 0.0171 0.0129 0.0608 0.0160
+ketchup back 170 35 0.0248 0.0352 0.0302 0.0389 0.0443 0.0508 0.0329 0.0240 0.0289 0.0277
+wholemilk front -30 40 0.0338 0.0287 0.0453 0.0291 0.0672 0.0499 0.0677 0.0218 0.0375 0.0653
+wholemilk back 170 35 0.0466 0.0379 0.0407 0.0239 0.0689 0.0545 0.0652 0.0260 0.0230 0.0649
 CASES
 # full against none, the issue's measure (#28: 0.25 the target): 0.764
 # before full carried the light between parts, 0.693 then, 0.662 since its
-# local part is smoothed over the terminator (2026-12-07).
+# local part is smoothed over the terminator (2026-12-07); those with one
+# sample a pixel. 0.583 with both at 3 x 3 samples (2026-12-07, later).
 gm=$(awk -v s="$ratiosum" 'BEGIN { printf "%.3f", exp(s / 8) }')
 echo "full's RMSE over none's against the medium, geometric mean of 8: $gm (the target 0.25)"
-closer "full over none, geometric mean of 8" "$gm" 0.70
+closer "full over none, geometric mean of 8" "$gm" 0.64
 gm=$(awk -v s="$logsum" 'BEGIN { printf "%.3f", exp(s / 16) }')
 closer "the reference's RMSE over the dipole-albedo reference's, geometric mean of 16" "$gm" 0.9
 # Light carried across thin parts (Donner & Jensen's multipole, measured

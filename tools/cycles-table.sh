@@ -6,7 +6,8 @@
 # jade reference with one bounce of light between the object's parts
 # (--bounces 1) and solved in the volume (--volume, ref_volume.h), last.
 # jade reference takes 3 x 3 rays a pixel, as Cycles
-# averages over each pixel.
+# averages over each pixel, and jade's modes 3 x 3 samples (jade render
+# --pixel-samples 3; until 2026-12-07 one, with the pass after the frame).
 #
 # The scenes are the quality table's (bunny; marble, skin1, ketchup, whole
 # milk; front-lit az -30 el 40, back-lit az 170 el 35) with the boundary that
@@ -59,7 +60,7 @@ for mat in ${MATERIALS:-marble skin1 ketchup wholemilk}; do
             elif [ "$m" != reference ]; then
                 pic=$base.jade_$m.png
                 # shellcheck disable=SC2086
-                "$jade" render $scene $common --mode "$m" --out "$pic" >/dev/null 2>&1
+                "$jade" render $scene $common --mode "$m" --pixel-samples 3 --out "$pic" >/dev/null 2>&1
             fi
             row="$row $("$jade" metric "$pic" "$base.pfm" --mask "$base.jade_mask.png" | field rmse)"
         done
