@@ -209,11 +209,11 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
              "#define JD_PACK_HIGHP %d\n#define JD_TRANSLUCENT %d\n#define JD_SPREAD %d\n#define JD_A0_ONLY 0\n"
              "#define JD_VERTEX_THICKNESS %d\n#define JD_FULL %d\n#define JD_VERTEX_DIFFUSION %d\n"
              "#define JD_WIDE_BUFFER %d\n#define JD_WIDE_ONLY 0\n#define JD_ALBEDO %d\n#define JD_ALBEDO_MAP %d\n"
-             "#define JD_ALBEDO_PARTIAL %d\n#define JD_TWO_SIDED %d\n%s%s%s",
+             "#define JD_ALBEDO_PARTIAL %d\n#define JD_TWO_SIDED %d\n#define JD_UTGARD %d\n%s%s%s",
              r->highp, translucent, m == JD_MODE_DUAL, r->vertex_thickness, m == JD_MODE_FULL,
              m == JD_MODE_FULL && r->vertex_diffusion,
              m == JD_MODE_FULL && !r->vertex_diffusion, r->albedo, r->albedo && map, r->albedo && map && r->albedo_partial,
-             r->d.no_cull, spec,
+             r->d.no_cull, r->d.caps->utgard != 0, spec,
              /* Full summed per vertex reads the light map and five levels
               * there, the light map and the colour texture per fragment:
               * the light through thin parts' table is one sampler more,

@@ -8,11 +8,16 @@
 // eta 1, where no boundary reflects). Schlick's form, 1.05 - 1.05 x^5 at
 // every eta, darkened an index-matched rim 15-40% and put full 7-12%
 // further from Cycles than none on held-out meshes front-lit.
-float jd_fresnel_tc(float cosv, vec2 ab)
+// jd_fresnel_x takes x = 1 - cosv from a caller that knows it lies in
+// [0, 1] (full's vertex stage: its clamps cost lima's vertex words there).
+float jd_fresnel_x(float x, vec2 ab)
 {
-    float x = 1.0 - clamp(cosv, 0.0, 1.0);
     float x2 = x * x;
     return ab.x - ab.y * (x2 * x2 * x);
+}
+float jd_fresnel_tc(float cosv, vec2 ab)
+{
+    return jd_fresnel_x(1.0 - clamp(cosv, 0.0, 1.0), ab);
 }
 
 // Percentage-closer filtering: the four nearest texels of the light depth

@@ -226,16 +226,27 @@ void main()
     // tube's or a leg's shaded side is no longer dark from the terminator
     // on, where Cycles' is not: the knot 0.693 -> 0.662 of none's error
     // against Cycles, the cow back-lit 10-12% closer (docs/quality.md,
-    // "The terminator"). lima's vertex stage 50 -> 57 words: grouped as
-    // its compiler took it shortest, t (t q) and n.l (F keep); left to
-    // right, t t q and n.l F keep, 60 (a search over 180 equivalent forms,
-    // 2026-12-07: none shorter than 57; its scheduler is not monotonic,
-    // and dropping keep entirely gave 64).
+    // "The terminator"). lima's vertex stage 50 -> 55 words, in the form
+    // its compiler took shortest (JD_UTGARD): t (t q); the Fresnel factors
+    // without the clamps that their arguments' ranges make idle (ndl_v >=
+    // 0, and |n.v| <= 1 but for rounding, where x^5 is then -1e-35 or so);
+    // the wide buffer's coordinates as (xy + w) s. 57 with the clamps, 60
+    // left to right; searches over 420 equivalent forms (2026-12-07): none
+    // shorter than 55 (its scheduler is not monotonic: with no lower clamp
+    // on the light's factor either, 59; dropping keep entirely gave 64).
+    // Elsewhere the clamps stay: Midgard, Vivante and Adreno clamp to
+    // [0, 1] for free, and the Utgard form took them 1, 1 and 4
+    // instructions more.
     float e = min(a_curve.x * u_wrap.x, 1.0), q = max(a_curve.y * u_wrap.y, 0.25);
     float t = max(xl + e, 0.0);
     float ndl_v = xl < e ? t * (t * q) : xl;
     // n.l is 0 on a face turned from the light: keep counts only where lit.
+#if JD_UTGARD
+    float fl = ndl_v * jd_fresnel_x(1.0 - min(ndl_v, 1.0), u_fresnel) * keep.g;
+    float fv = jd_fresnel_x(1.0 - abs(dvf), u_fresnel);
+#else
     float fl = ndl_v * (jd_fresnel_tc(ndl_v, u_fresnel) * keep.g), fv = jd_fresnel_tc(abs(dvf), u_fresnel);
+#endif
     vec3 hv = normalize(u_light_dir + vf);
 #if JD_WIDE_BUFFER
     v_fresnel = vec4(u_local_x * fl, fv);
@@ -311,6 +322,10 @@ void main()
 #endif
 #endif
 #if JD_FULL && JD_WIDE_BUFFER
+#if JD_UTGARD
+    v_screen = vec3((gl_Position.xy + gl_Position.w) * u_wide_scale, gl_Position.w);
+#else
     v_screen = vec3(gl_Position.xy * u_wide_scale + gl_Position.w * u_wide_scale, gl_Position.w);
+#endif
 #endif
 }
