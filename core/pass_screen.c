@@ -67,7 +67,18 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
             glUniform3fv(p->wide_x, 1, wid);
             glUniform3fv(p->spec_x, 1, spec);
         }
-        if (p->keep >= 0) glUniform3fv(p->keep, 2, &r->keep[0][0]);
+        if (p->keep >= 0) {
+            /* The levels' half-resolution sum takes a lit face's share
+             * halved, as it stores its sum (shade.frag): 1/2 - lit a/2
+             * 2^(-b t), with a/2 here, not a multiply per vertex (lima's
+             * vertex stage 51 -> 48 words). */
+            float kp[2][3];
+            for (int c = 0; c < 3; c++) {
+                kp[0][c] = p == &r->wide_prog ? 0.5f * r->keep[0][c] : r->keep[0][c];
+                kp[1][c] = r->keep[1][c];
+            }
+            glUniform3fv(p->keep, 2, &kp[0][0]);
+        }
         if (p->wrap >= 0) {
             /* The local part's width where it meets the terminator: the
              * RMS width of its Gaussians (green's weights, and the half

@@ -160,7 +160,16 @@ void main()
 #endif
 #endif
 #if JD_FULL
+#if JD_WIDE_ONLY
+    // G(l) as a three-lane dot and an add, not a four-lane dot of (l, 1):
+    // the same value; the levels' sum's vertex stage on lima 48 -> 45
+    // words, Midgard 64 -> 61. Where the vertex stage sums the levels the
+    // four-lane dot is the shorter (Vivante GC3000/GC7000L and Adreno 3xx
+    // one instruction).
+    vec3 bounce = u_bounce_rd * max(dot(a_bounce.xyz, u_light_dir) + a_bounce.w, 0.0);
+#else
     vec3 bounce = u_bounce_rd * max(dot(a_bounce, vec4(u_light_dir, 1.0)), 0.0);
+#endif
 #endif
 #if JD_WIDE_ONLY
     // The face seen is lit where n.v and n.l have the same sign: one
@@ -169,12 +178,12 @@ void main()
     // mix(1, keep, lit) / 2, the same value. lima's vertex stage: 64 words
     // as the other passes write it, 61 with the product, 57 with the form,
     // 56 with both (Midgard 32 -> 31 bundles).
-    // Halved (the light between parts by its uniform: pass_screen.c): the
-    // buffer holds sqrt(wide / 2) (shade.frag), and the halving here is a
-    // multiply fewer there.
+    // Halved (the light between parts and the share's a by their
+    // uniforms: pass_screen.c): the buffer holds sqrt(wide / 2)
+    // (shade.frag), and the halving here is a multiply fewer there.
     float dv = dot(an, u_eye - pos), dl = dot(an, u_light_dir);
     float lit_face = step(0.0, dv * dl);
-    v_keep = 0.5 - (0.5 * lit_face) * lose;
+    v_keep = 0.5 - lit_face * lose;
     v_bounce = bounce;
 #endif
 #if JD_WIDE_ONLY
