@@ -15,7 +15,17 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
     glUniform3fv(p->albedo, 1, f->albedo);
     glUniform3fv(p->light_color, 1, f->light_color);
     glUniform4fv(p->shading, 1, f->shading);
-    glUniformMatrix4fv(p->light_tex, 1, GL_FALSE, f->light_tex.m);
+    if (p->light_z_scaled) {
+        /* The depth row (column-major: every fourth from the third) as
+         * the shadow test takes it, z c - 1/4 (mesh.vert). */
+        float m[16], c = jdr_soft_c(r);
+        memcpy(m, f->light_tex.m, sizeof m);
+        for (int k = 0; k < 4; k++) m[2 + 4 * k] *= c;
+        m[14] -= 0.25f;
+        glUniformMatrix4fv(p->light_tex, 1, GL_FALSE, m);
+    } else {
+        glUniformMatrix4fv(p->light_tex, 1, GL_FALSE, f->light_tex.m);
+    }
     glUniform4fv(p->light_map, 1, f->light_map);
     glUniform2fv(p->shadow_bias, 1, f->shadow_bias);
     if (p->f0 >= 0) glUniform1f(p->f0, f->f0);

@@ -66,6 +66,7 @@ typedef struct shade_prog {
     GLint slab, slab_v, slab_scale, slab_scale_v, keep, bounce_rd, wrap;
     GLint soft_c; /* full: the exponential shadow map's exponent (light.glsl, jd_soft_lit) */
     GLint spec;   /* full, the levels read from the half-resolution pass: the highlight's table */
+    int light_z_scaled; /* u_light_tex's depth row scaled and offset to the shadow test's exponent (mesh.vert) */
 } shade_prog;
 
 /* A step of the full mode's light-space diffusion (diffuse_blur.frag). */

@@ -210,8 +210,15 @@ void main()
     // full's shadow test takes the depth as its exponential's exponent
     // (light.glsl, jd_soft_lit): scaled and offset here, not per fragment;
     // full moves no depth towards the light (the bias below is the 2x2
-    // test's).
+    // test's). With JD_LIGHT_Z_SCALED the matrix's depth row comes scaled and
+    // offset from the CPU (pass_screen.c): the picture's pass with the
+    // levels from their buffer, which reads no w of this stage (lima's
+    // vertex stage with a colour 63 -> 58 words, Midgard 89 -> 82 and 105
+    // -> 99 bundles, Vivante 2 fewer; lima's without a colour keeps the
+    // multiply, 55 words where the other took 59: render_program.c).
+#ifndef JD_LIGHT_Z_SCALED
     v_shadow.z = sp.z * u_soft_c.x - 0.250;
+#endif
 #else
     // The light looks down its +z: a normal facing it has a negative z there.
     float cl = clamp(abs(2.0 * (u_light_tex * vec4(an, 0.0)).z), 0.2, 1.0);
