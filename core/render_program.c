@@ -204,10 +204,9 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
     /* full's picture pass with the levels from their buffer takes the
      * light matrix's depth row already scaled to the shadow test's
      * exponent (mesh.vert, JD_LIGHT_Z_SCALED): a multiply-add fewer a
-     * vertex, and 2-7 instructions fewer on every compiler of the table
-     * but lima's without the model's colours (55 -> 59 words: its
-     * scheduler), which keeps the multiply. */
-    int z_scaled = m == JD_MODE_FULL && !r->vertex_diffusion && (r->albedo || !r->d.caps->utgard);
+     * vertex, and 1-7 instructions fewer on every compiler of the table
+     * that it changes. */
+    int z_scaled = m == JD_MODE_FULL && !r->vertex_diffusion;
     /* The model's own colours (JD_ALBEDO: per vertex; _MAP: its texture too)
      * only in the programs that draw the picture: the light-space and
      * low-resolution passes carry light, and the picture's pass multiplies

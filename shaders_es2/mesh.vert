@@ -213,9 +213,9 @@ void main()
     // test's). With JD_LIGHT_Z_SCALED the matrix's depth row comes scaled and
     // offset from the CPU (pass_screen.c): the picture's pass with the
     // levels from their buffer, which reads no w of this stage (lima's
-    // vertex stage with a colour 63 -> 58 words, Midgard 89 -> 82 and 105
-    // -> 99 bundles, Vivante 2 fewer; lima's without a colour keeps the
-    // multiply, 55 words where the other took 59: render_program.c).
+    // vertex stage 55 -> 54 words with the light factor grouped as below,
+    // with a colour 63 -> 58; Midgard 89 -> 82 and 105 -> 99 bundles,
+    // Vivante 2 fewer).
 #ifndef JD_LIGHT_Z_SCALED
     v_shadow.z = sp.z * u_soft_c.x - 0.250;
 #endif
@@ -249,7 +249,8 @@ void main()
     // the wide buffer's coordinates as (xy + w) s. 57 with the clamps, 60
     // left to right; searches over 420 equivalent forms (2026-12-07): none
     // shorter than 55 (its scheduler is not monotonic: with no lower clamp
-    // on the light's factor either, 59; dropping keep entirely gave 64).
+    // on the light's factor either, 59; dropping keep entirely gave 64);
+    // 54 since the depth row comes scaled (JD_LIGHT_Z_SCALED, below).
     // Elsewhere the clamps stay: Midgard, Vivante and Adreno clamp to
     // [0, 1] for free, and the Utgard form took them 1, 1 and 4
     // instructions more.
@@ -258,7 +259,9 @@ void main()
     float ndl_v = xl < e ? t * (t * q) : xl;
     // n.l is 0 on a face turned from the light: keep counts only where lit.
 #if JD_UTGARD
-    float fl = ndl_v * jd_fresnel_x(1.0 - min(ndl_v, 1.0), u_fresnel) * keep.g;
+    // n.l (F keep): with the depth row scaled on the CPU (above), the
+    // shortest of lima's (54 words; left to right 59, (n.l keep) F 55).
+    float fl = ndl_v * (jd_fresnel_x(1.0 - min(ndl_v, 1.0), u_fresnel) * keep.g);
     float fv = jd_fresnel_x(1.0 - abs(dvf), u_fresnel);
 #else
     float fl = ndl_v * (jd_fresnel_tc(ndl_v, u_fresnel) * keep.g), fv = jd_fresnel_tc(abs(dvf), u_fresnel);
