@@ -73,8 +73,15 @@ static void update_slab(jd_renderer *r, const frame_params *f)
                 double u = q / fit->sigma_mm[DIFF_LOCAL + k];
                 levels += fit->weight[DIFF_LOCAL + k][c] * exp(-0.5 * u * u);
             }
-            px[4 * i + c] = (unsigned char)lrint(255.0 * fmin(21.0 / 20.0 * trans * rd, 1.0));
-            px[4 * (SLAB_SIZE + i) + c] = (unsigned char)lrint(255.0 * fmin(21.0 / 20.0 * levels, 1.0));
+            /* Both rows as square roots, as the levels keep their light:
+             * the shading takes their difference, which on a far face is
+             * a few parts in a hundred, and in 8 bits a step of 1/255
+             * there came out as patches with stepped edges where it
+             * crossed zero (the fandisk back-lit in skin1, green and blue:
+             * docs/quality.md, "The light through thin parts where it does
+             * not come through"). */
+            px[4 * i + c] = (unsigned char)lrint(255.0 * sqrt(fmin(21.0 / 20.0 * trans * rd, 1.0)));
+            px[4 * (SLAB_SIZE + i) + c] = (unsigned char)lrint(255.0 * sqrt(fmin(21.0 / 20.0 * levels, 1.0)));
         }
         px[4 * i + 3] = 255, px[4 * (SLAB_SIZE + i) + 3] = 255;
     }

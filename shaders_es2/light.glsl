@@ -218,8 +218,11 @@ vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float sca
     // itself (z far below tn) and takes the ramp alone.
     float r = z / max(tn, 0.001);
     float w = max(-lit, clamp(min(4.0 * r - 1.0, 6.0 - 2.0 * r), 0.0, 1.0) * (1.0 - max(lit, 0.0)));
-    // sqrt(S / (21/20)): the table holds the 21/20.
-    return (w * m.x * m.x) * max(texture2D(slab, vec2(t, 0.25)).rgb - texture2D(slab, vec2(z, 0.75)).rgb, 0.0);
+    // sqrt(S / (21/20)): the table holds the 21/20. Its two rows come as
+    // square roots (pass_light.c, update_slab: their difference is small
+    // on a far face, and 8 bits of it made patches there).
+    vec3 ta = texture2D(slab, vec2(t, 0.25)).rgb, tb = texture2D(slab, vec2(z, 0.75)).rgb;
+    return (w * m.x * m.x) * max(ta * ta - tb * tb, 0.0);
 }
 
 // The levels' sum at light-map position p (xy, depth): Rd's weight on each
