@@ -367,8 +367,8 @@ static jd_result build_full(jd_renderer *r, jd_error *err)
                  "#define JD_WIDE_BUFFER 0\n#define JD_WIDE_ONLY 1\n#define JD_ALBEDO 0\n#define JD_ALBEDO_MAP 0\n#define JD_ALBEDO_PARTIAL 0\n"
                  "%s",
                  r->highp, r->wide_unrolled ? "#define JD_TRIPS 4\n" : "");
-        /* v_pos v_keep v_bounce v_shadow */
-        if ((res = build(r, 4, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
+        /* v_pos v_keep v_bounce v_shadow v_exit */
+        if ((res = build(r, 5, "shaders_es2/mesh.vert", "shaders_es2/shade.frag", def, mesh_attribs, &r->wide_prog.id,
                          err)))
             return res;
         shade_locations(&r->wide_prog);

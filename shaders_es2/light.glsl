@@ -186,8 +186,10 @@ float jd_level_at(sampler2D lv, vec3 p, float d, float s, float slack, float lit
 // tn: the part's own thickness under the point along its normal, in the
 // table's coordinate (mesh_thickness.c); lit: the point's own light
 // (jd_lit_ramp), negative past the terminator; sd: the shadow map's depth
-// at xy (jd_soft_lit's map, read as the light map is).
-vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float scale, float sd, float tn, float lit)
+// at xy (jd_soft_lit's map, read as the light map is); through: the shadow
+// test where the point's normal leaves the part (mesh.vert).
+vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float scale, float sd, float tn, float lit,
+                   float through)
 {
     vec2 m = texture2D(level, xy).rg;
     // The lit face's depth above the point: the shallower of two estimates
@@ -201,11 +203,18 @@ vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float sca
     // The reference carries the light across a part along the normal,
     // which a slanted light crosses longer: the part's own thickness where
     // the depth is up to three times it (a light 70 degrees off the
-    // normal), the depth from 3.33 times it on, a ramp between. Farther,
-    // the lit face above is another part's (a foot under the body: its own
-    // thickness there lit ketchup's feet from the back; at twice, or with
-    // no limit, the bunny's back-lit table lost 1-10% of the gain).
-    float t = min(z, max(tn, 4.0 * z - 11.0 * tn));
+    // normal), the depth from 7 times it on, a ramp between. Farther, the
+    // lit face above is another part's; where that part shades the
+    // normal's far end (a foot under the body, whose own thickness lit
+    // ketchup's feet from the back in streaks), through, the shadow test
+    // there, takes the term away. Until 2026-12-07 the ramp alone did
+    // that, and reached the depth at 3.67 times the thickness: where a
+    // part thins towards an edge it dropped T(t) to nothing within a few
+    // vertices (the fandisk's dark triangle). With the test and no ramp
+    // the triangle went, but the default asset's blotches grew 2%
+    // (docs/quality.md, "The light through thin parts where it does not
+    // come through").
+    float t = min(z, max(tn, 1.5 * z - 3.5 * tn));
     // Where it applies: a face turned from the light, over the first
     // quarter of n.l past the terminator (lit: jd_lit_ramp); and, whatever
     // its n.l, a face not lit itself (the rest of 1 - lit) whose lit face
@@ -222,7 +231,7 @@ vec3 jd_slab_light(sampler2D level, sampler2D slab, vec2 xy, float zs, float sca
     // square roots (pass_light.c, update_slab: their difference is small
     // on a far face, and 8 bits of it made patches there).
     vec3 ta = texture2D(slab, vec2(t, 0.25)).rgb, tb = texture2D(slab, vec2(z, 0.75)).rgb;
-    return (w * m.x * m.x) * max(ta * ta - tb * tb, 0.0);
+    return (w * through * m.x * m.x) * max(ta * ta - tb * tb, 0.0);
 }
 
 // The levels' sum at light-map position p (xy, depth): Rd's weight on each

@@ -16,6 +16,7 @@ uniform vec4 u_light_map;    // light-depth texels per side, their inverse, Schl
 uniform sampler2D u_depth;   // light depth, packed; irradiance in alpha (full: the exponential shadow map)
 #if JD_WIDE_ONLY
 varying vec2 v_pos;          // x: n.l, signed as the face is seen; y: the part's thickness, half (light-depth units: mesh.vert)
+varying vec3 v_exit;         // where the normal leaves the part, in the light map (mesh.vert)
 varying vec3 v_keep;         // the levels' share a lit face of a thin part keeps, halved (mesh.vert)
 varying vec3 v_bounce;       // the light between parts, halved (mesh.vert)
 #else
@@ -280,7 +281,8 @@ void main()
     // from merging the two; the map has no mip levels, so it reads the
     // same texels.
     float sd = jd_depth(texture2D(u_depth, v_shadow.xy, -1.0));
-    wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, sd, v_pos.y * u_slab_scale, lit);
+    wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, sd, v_pos.y * u_slab_scale, lit,
+                          jd_soft_lit(u_depth, v_exit));
 #endif
 #if JD_WIDE_ONLY
     // As the vertex stage's: a lit face of a thin part returns R(t); and
