@@ -230,9 +230,10 @@ void main()
     // dark blotch on the back-lit ketchup bunny's thigh, and that case 1.7%
     // further from the reference); 0.3, 0.5, 0.7 or 1 times the thickness
     // moved the bunny's back-lit cases by 0.8% at most (with the ramp of
-    // 3 to 3.67 times the thickness, light.glsl). The depth row not scaled on the CPU in these two programs
-    // (JD_LIGHT_Z_SCALED: the picture's pass alone). The form is lima's
-    // shortest of those tried: 52 words in the summing pass, 54, 57 and 62.
+    // 3 to 3.67 times the thickness, light.glsl). These two programs take
+    // the depth row unscaled (JD_LIGHT_Z_SCALED is the picture's pass
+    // alone), so the exponent's scale is applied here. The form is lima's
+    // shortest of those tried: 52 words in the summing pass, 54, 57, 62.
     vec3 exitp = v_shadow.xyz -
                  thick * ((u_light_tex * vec4(an, 0.0)).xyz + vec3(0.0, 0.0, 0.25)) * vec3(1.0, 1.0, u_soft_c.x);
 #if JD_WIDE_ONLY
