@@ -316,7 +316,7 @@ void main()
 #ifndef JD_NO_SLAB
     // A face the light does not reach takes what crossed the part from the
     // lit face above it.
-    v_wide += jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w * u_slab_scale_v, u_slab_scale_v,
+    v_wide += jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w, u_slab_scale_v,
                             dot(texture2D(u_depth_v, v_shadow.xy).xy, jd_bytes), thick * 0.5 * u_slab_scale_v, lit,
                             jd_soft_lit(u_depth_v, exitp));
 #endif

@@ -281,7 +281,7 @@ void main()
     // from merging the two; the map has no mip levels, so it reads the
     // same texels.
     float sd = jd_depth(texture2D(u_depth, v_shadow.xy, -1.0));
-    wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w * u_slab_scale, u_slab_scale, sd, v_pos.y * u_slab_scale, lit,
+    wide += jd_slab_light(u_lv1, u_slab, v_shadow.xy, v_shadow.w, u_slab_scale, sd, v_pos.y * u_slab_scale, lit,
                           jd_soft_lit(u_depth, v_exit));
 #endif
 #if JD_WIDE_ONLY
