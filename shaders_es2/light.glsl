@@ -186,20 +186,12 @@ float jd_level_at(sampler2D lv, vec3 p, float d, float s, float slack, float lit
 // the lit face is steep to the light, a level texel's entries span many
 // depths and the blurs' sort leaves much of that face's light in the deeper
 // part ("Where the top arc's streaks come from", docs/quality.md). From the
-// shallower part alone the back-lit ketchup knot's thick lower tube took
-// 0.005 of the light that crossed it where the reference carries 0.0125 (red,
-// linear, 256x256), and came out 27% darker than the reference (22% now). The
-// deeper part's weight trades that against the flicker: whole, the lower tube
-// 17% darker, the bunny's back-lit ketchup 4.3% closer to the reference, but
-// the orbit's jerk 2.3% and the blotches 1% up; at half the jerk 0.3% down,
-// the blotches and the front-lit bunny up to 0.6% up, every back-lit case and
-// the knot and held-out meshes against Cycles closer (docs/quality.md, "The
-// light through thin parts from both parts of the level"). The test in the
-// point's own light-depth units and as a dot product: VideoCore IV kept its
-// two threads (577 instructions, 568 before; every form of the test on the
-// scaled depth took it to one thread and 1,302-1,316 cycles, and of those
-// on the point's own the dot product is the shortest), lima 254 words
-// (249).
+// shallower part alone a thick back-lit tube got 0.4 of the light the
+// reference carries across it. Half, not all, of the deeper part: whole, it
+// came closer to the reference but flickered 2.3% more as the light turns
+// (docs/quality.md, "The light through thin parts from both parts of the
+// level"). The test is made in the point's own light-depth units: on the
+// scaled depth VideoCore IV's summing pass fell to one thread.
 // pz: the point's light depth; scale: light-depth units to the table's
 // coordinate; tn: the part's own thickness under the point along its normal,
 // in the table's coordinate (mesh_thickness.c); lit: the point's own light
