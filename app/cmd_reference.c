@@ -34,11 +34,20 @@ int jd_cmd_reference(int argc, char **argv)
     }
     jd_session s;
     if (!jd_session_open_mesh(&s, &o, "reference")) { jd_session_close(&s); return 1; }
+    /* The material's eta stands unless --eta gave one (jd_scene_view_of's
+     * rule): said here in the option's words, before any work. */
+    float eta = o.scene.eta > 0.5f ? o.scene.eta : 1.3f;
+    if (o.single_scatter && eta != 1.0f) {
+        fprintf(stderr, "jade reference: --single-scatter traces light through an index-matched boundary: it needs --eta 1, "
+                        "not %g\n", (double)eta);
+        jd_session_close(&s);
+        return 2;
+    }
 
     jd_ref_desc d = {.mesh = &s.mesh, .scene = o.scene, .width = o.width, .height = o.height,
                      .samples = (uint32_t)o.samples, .error = o.ref_error, .window_mm = o.window_mm,
                      .pixel_samples = o.pixel_samples, .bounces = o.bounces,
-                     .volume = o.volume, .volume_mm = o.volume_mm,
+                     .volume = o.volume, .volume_mm = o.volume_mm, .single_scatter = o.single_scatter,
                      .threads = o.threads, .progress = !o.quiet, .seed = (uint32_t)o.seed};
     size_t n = (size_t)o.width * o.height;
     float *linear = malloc(n * 3 * sizeof(float));

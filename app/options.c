@@ -47,6 +47,7 @@ static const opt table[] = {
     {"--pixel-samples", T_INT, OFF(pixel_samples), 1, 8, JD_OPT_REFERENCE | RO,
      "N          N x N samples a pixel, averaged in linear light (reference: rays; render: drawn N times the size, for a still's edges) [1]"},
     {"--bounces", T_INT, OFF(bounces), 0, 4, JD_OPT_REFERENCE, "N          rounds of light falling from one part of the object on another (inter-reflection), 8 rays a sample each [0]"},
+    {"--single-scatter", T_FLAG, OFF(single_scatter), 0, 0, JD_OPT_REFERENCE, "           trace the light scattered once along each camera ray, in place of the light carried across thin parts (--eta 1 only)"},
     {"--volume", T_FLAG, OFF(volume), 0, 0, JD_OPT_REFERENCE, "           solve the diffusion equation in the body on a grid (light round bends, through thick parts) instead of summing the dipole"},
     {"--volume-mm", T_FLOAT, OFF(volume_mm), 0.05, 100, JD_OPT_REFERENCE, "X          the volume's cells, mm (implies --volume) [the finest that keeps 6 million cells in the box around the object, at least 0.25]"},
     {"--threads", T_INT, OFF(threads), 1, 256, JD_OPT_REFERENCE, "N          [every core]"},

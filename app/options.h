@@ -26,6 +26,7 @@ typedef struct jd_options {
     int pixel_samples;
     int bounces;            /* jade reference: inter-reflection rounds */
     int volume;             /* jade reference: the diffusion equation in the body */
+    int single_scatter;     /* jade reference: single scattering traced per pixel */
     float volume_mm;
     const char *drm_device, *connector, *display_mode;
     int rotation;

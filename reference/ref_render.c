@@ -17,6 +17,7 @@
 #include "ref_bvh.h"
 #include "ref_diffusion.h"
 #include "ref_samples.h"
+#include "ref_single.h"
 #include "ref_slab.h"
 #include "ref_volume.h"
 #include "ray_fan.h"
@@ -40,6 +41,7 @@ struct jd_ref {
     jd_volume vol;       /* desc.volume: the diffusion equation in the body, in place of both */
     jd_volume_desc vd;
     jd_dipole dp;
+    jd_single single;    /* desc.single_scatter: the medium's light scattered once, traced per pixel */
     /* The light's beam by its cosine (0..1 in JD_BEAM_STEPS): the
      * half-space's albedo for that beam over its albedo for diffuse light,
      * which the dipole's profile already has (jd_albedo_ratio), per channel. */
@@ -247,6 +249,13 @@ static void irradiance(const jd_ref *r, const float p[3], const float n[3], cons
 
 typedef struct irr_ctx { jd_ref *r; uint32_t n; } irr_ctx;
 
+/* Whether light is carried across thin parts: not on a half-space, not in
+ * the volume's solve (its body carries it), not where single scattering is
+ * traced (what came through the knot's tubes and the bunny's ears was
+ * mostly that, which the slab's diffusion spread wrongly: docs/quality.md,
+ * "Single scattering"). */
+static int carries(const jd_ref_desc *d) { return !d->half_space && !d->volume && !d->single_scatter; }
+
 /* Light leaving the far side of a thin part (ref_slab.h): the ray from the
  * sample along its inward normal to where it leaves the object, d mm; the
  * sample and a carried point where the ray leaves share its power by
@@ -308,7 +317,7 @@ static void irr_chunk(void *ctx, long b, long e, uint64_t *evals)
                 for (int k = 0; k < 3; k++) p->p[k] -= (r->light[k] - n[k] * ndl) * d;
             }
         }
-        if (!r->d.half_space && !r->d.volume) carry_across(r, pw, n, p, &r->pts[((irr_ctx *)ctx)->n + i]);
+        if (carries(&r->d)) carry_across(r, pw, n, p, &r->pts[((irr_ctx *)ctx)->n + i]);
     }
 }
 
@@ -348,6 +357,32 @@ static void leaving_light(const jd_ref *r, const float mo[3], const float loc[6]
             ld *= sc, la *= sc, local = m;
         }
         out[k] = ld * gb + la * lerp_table(r->beam_scale[k], mu) + (m - local) * lerp_table(r->exit_deep[k], mu);
+    }
+}
+
+/* The light scattered once on its way through the medium to the camera
+ * (ref_single.h), added to what leaves the point seen, less what a
+ * half-space lit as that point would scatter once: the local exit law
+ * (leaving_light) already gives a half-space's whole reflection, first
+ * order included, and keeps it where the point is lit; in the proportion
+ * leaving_light kept of it. A model's colour scales it as the point's
+ * diffused light (at entry and exit both: where the light entered is a
+ * ray's length away, not looked up). */
+static void add_single(const jd_ref *r, const jd_hit *hit, const float p[3], const float n[3], const float ng[3],
+                       const float dir[3], const float mo[3], const float loc[6], uint32_t seed, float lo[3])
+{
+    float e = r->d.scene.light_intensity, s1[3], fo[3] = {1, 1, 1};
+    if (dot3(dir, ng) >= 0) return; /* the inside of a face (an open mesh's): no medium entered here */
+    /* No way out behind the point (an open mesh): the half-space's own
+     * single scattering, in lo already, stands. */
+    if (jd_single_scatter(&r->single, p, ng, dir, r->light, e, seed, s1) < 0) return;
+    if (r->d.mesh->colors) albedo_factor(r, hit->tri, hit->u, hit->v, fo);
+    float mu0 = dot3(n, r->light), mu = -dot3(n, dir);
+    int lit = mu0 > 0 && mu > 0 && light_visible(r, p, ng);
+    for (int k = 0; k < 3; k++) {
+        float local = loc[k] + loc[3 + k], m = mo[k] > 0 ? mo[k] : 0.0f, keep = local > m ? m / local : 1.0f;
+        float own = lit ? keep * jd_single_halfspace(e, (float)r->dp.alpha[k], mu0, mu) : 0.0f;
+        lo[k] = fmaxf(lo[k] + (s1[k] - own) * fo[k] * fo[k], 0.0f);
     }
 }
 
@@ -399,7 +434,7 @@ static jd_result light_samples(jd_ref *r, uint32_t n, float error, int progress,
         r->st.volume_lost = r->vol.lost;
         return res;
     }
-    if (!r->d.half_space) {
+    if (carries(&r->d)) {
         uint32_t all = n;
         for (uint32_t i = n; i < 2 * n; i++)
             if (r->pts[i].thick > 0) r->pts[all++] = r->pts[i];
@@ -550,6 +585,22 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     jd_vec3 L = r->view.light_dir;
     r->light[0] = L.x; r->light[1] = L.y; r->light[2] = L.z;
     jd_dipole_init(&r->dp, s->sigma_s, s->sigma_a, r->view.eta, s->density > 0 ? s->density : 1.0f);
+    if (desc->single_scatter) {
+        /* Traced straight from the light to the camera: through a smooth
+         * dielectric that path is a caustic (it must refract towards one
+         * direction at both ends), which rays from the camera do not find. */
+        if (r->view.eta != 1.0f) {
+            double eta = r->view.eta;
+            jd_ref_destroy(r);
+            return jd_fail(err, JD_ERR_ARG, "single scattering is traced through an index-matched boundary: it needs eta 1, not %g",
+                           eta);
+        }
+        r->single = (jd_single){.bvh = &r->bvh, .nrm = r->nrm, .mm_per_world = r->view.mm_per_world};
+        for (int k = 0; k < 3; k++) {
+            r->single.sigma_t[k] = r->dp.sigma_t[k];
+            r->single.sigma_s[k] = r->dp.alpha[k] * r->dp.sigma_t[k];
+        }
+    }
     for (int c = 0; c < 3; c++) {
         double diffuse = 0, beam[JD_BEAM_STEPS + 1];
         if (jd_halfspace_albedo_beam(r->dp.alpha[c], r->view.eta, JD_BEAM_STEPS + 1, beam, &diffuse)) {
@@ -610,7 +661,7 @@ jd_result jd_ref_create(const jd_ref_desc *desc, jd_ref **out, jd_ref_stats *sta
     res = jd_surface_samples(r->pos, r->tri, r->num_tris, n, desc->seed, &sp, &n, err);
     if (res) { jd_ref_destroy(r); return res; }
     /* Room for each sample's light carried across a thin part. */
-    r->pts = malloc(sizeof *r->pts * (n ? n : 1) * (desc->half_space || desc->volume ? 1 : 2));
+    r->pts = malloc(sizeof *r->pts * (n ? n : 1) * (carries(desc) ? 2 : 1));
     r->pt_n = malloc(sizeof(float) * 6 * (n ? n : 1));
     if (!r->pts || !r->pt_n) {
         free(sp);
@@ -746,6 +797,7 @@ static int pixel_ray(px_ctx *c, float fx, float fy, float o[3], uint64_t *evals)
     float spec = ndl > 0 && light_visible(r, p, ng)
                      ? s->specular * powf(fmaxf(dot3(nv, hv), 0.0f), shin) * s->light_intensity
                      : 0.0f;
+    if (r->d.single_scatter) add_single(r, &hit, p, n, ng, dir, mo, loc, (uint32_t)(fx * 7919.0f) ^ (uint32_t)(fy * 104729.0f), lo);
     for (int k = 0; k < 3; k++) o[k] = (lo[k] + spec) * expo;
     return 1;
 }

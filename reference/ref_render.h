@@ -41,6 +41,8 @@ typedef struct jd_ref_desc {
     float volume_mm;         /* [0: ref_volume's choice] its cells' size */
     int bounces;             /* [0] times the light the object gives out falls on it again and enters
                                 (inter-reflection through the air between its parts; 8 rays a sample) */
+    int single_scatter;      /* the light scattered once traced along each camera ray (ref_single.h), in
+                                place of the light carried across thin parts; eta 1 only */
     /* Tests: replaces the light's irradiance (world position, outward normal). */
     void (*irradiance)(void *user, const float p[3], const float n[3], float e[3]);
     void *user;

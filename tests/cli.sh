@@ -199,6 +199,7 @@ expect "a reference sequence" 0 "wrote $tmp/rs0.png to $tmp/rs1.png" -- "$jade" 
 expect "its last light in one run" 0 "wrote" -- "$jade" reference --size 24x24 --samples 3000 --bounces 1 --light-azimuth 130 --quiet --out "$tmp/rs130.png"
 check "the reference's frame 1 is the picture at 130 degrees" 'cmp -s "$tmp/rs1.png" "$tmp/rs130.png"'
 expect "the volume's one light" 2 "--volume draws one frame" -- "$jade" reference --volume --frames 2 --size 16x16
+expect "single scattering needs eta 1" 2 "needs --eta 1, not 1.5" -- "$jade" reference --single-scatter --material marble --size 16x16
 expect "a % that is not a number" 1 "numbers the frames, once, as %d or %0Nd" -- "$jade" render --size 32x32 --out "$tmp/x%s.png"
 expect "two numbers" 1 "numbers the frames, once" -- "$jade" render --size 32x32 --frames 2 --out "$tmp/x%d-%d.png"
 ln -s "$tmp/target" "$tmp/lk1.png"

@@ -4,7 +4,9 @@
 # of jade reference, none, single, dual and full against the path-traced
 # picture, over jade's object mask, in linear light (jade metric), and of
 # jade reference with one bounce of light between the object's parts
-# (--bounces 1) and solved in the volume (--volume, ref_volume.h), last.
+# (--bounces 1), solved in the volume (--volume, ref_volume.h), and with one
+# bounce and single scattering traced (--bounces 1 --single-scatter,
+# ref_single.h), last.
 # jade reference takes 3 x 3 rays a pixel, as Cycles
 # averages over each pixel, and jade's modes 3 x 3 samples (jade render
 # --pixel-samples 3; until 2026-12-07 one, with the pass after the frame).
@@ -35,8 +37,8 @@ bunny=${MESH:-$root/../shared/testdata/meshes/stanford-bunny.obj}
 mkdir -p "$out"
 field() { sed -n "s/.*\"$1\": \([-0-9.e]*\).*/\1/p"; }
 common="--eta 1 --ambient 0 --specular 0"
-echo "| material | light | jade reference | none | single | dual | full | full / none | full / reference | reference, 1 bounce | reference, volume |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| material | light | jade reference | none | single | dual | full | full / none | full / reference | reference, 1 bounce | reference, volume | reference, 1 bounce, single scattering |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for mat in ${MATERIALS:-marble skin1 ketchup wholemilk}; do
     for l in front:-30:40 back:170:35; do
         name=${l%%:*}; rest=${l#*:}; az=${rest%%:*}; el=${rest#*:}
@@ -52,10 +54,12 @@ for mat in ${MATERIALS:-marble skin1 ketchup wholemilk}; do
         "$jade" reference $scene $common --bounces 1 --pixel-samples 3 --out "$base.jade_bounced.png" --quiet >/dev/null 2>&1
         # shellcheck disable=SC2086
         "$jade" reference $scene $common --volume --pixel-samples 3 --out "$base.jade_volume.png" --quiet >/dev/null 2>&1
+        # shellcheck disable=SC2086
+        "$jade" reference $scene $common --bounces 1 --single-scatter --pixel-samples 3 --out "$base.jade_scattered.png" --quiet >/dev/null 2>&1
         row=""
-        for m in reference none single dual full bounced volume; do
+        for m in reference none single dual full bounced volume scattered; do
             pic=$base.jade_reference.png
-            if [ "$m" = bounced ] || [ "$m" = volume ]; then
+            if [ "$m" = bounced ] || [ "$m" = volume ] || [ "$m" = scattered ]; then
                 pic=$base.jade_$m.png
             elif [ "$m" != reference ]; then
                 pic=$base.jade_$m.png
@@ -64,6 +68,6 @@ for mat in ${MATERIALS:-marble skin1 ketchup wholemilk}; do
             fi
             row="$row $("$jade" metric "$pic" "$base.pfm" --mask "$base.jade_mask.png" | field rmse)"
         done
-        echo "$row" | awk -v c="$mat" -v l="$name" '{ printf "| %s | %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.2f | %.2f | %.4f | %.4f |\n", c, l, $1, $2, $3, $4, $5, $5 / $2, $5 / $1, $6, $7 }'
+        echo "$row" | awk -v c="$mat" -v l="$name" '{ printf "| %s | %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.2f | %.2f | %.4f | %.4f | %.4f |\n", c, l, $1, $2, $3, $4, $5, $5 / $2, $5 / $1, $6, $7, $8 }'
     done
 done
