@@ -34,12 +34,13 @@ int jd_cmd_reference(int argc, char **argv)
     }
     jd_session s;
     if (!jd_session_open_mesh(&s, &o, "reference")) { jd_session_close(&s); return 1; }
-    /* The material's eta stands unless --eta gave one (jd_scene_view_of's
-     * rule): said here in the option's words, before any work. */
-    float eta = o.scene.eta > 0.5f ? o.scene.eta : 1.3f;
-    if (o.single_scatter && eta != 1.0f) {
+    /* jd_ref_create refuses it too, in the library's words; said here in
+     * the option's, before any work, with the eta the scene resolves to. */
+    jd_scene_view view;
+    jd_scene_view_of(&o.scene, &s.mesh, (float)o.width / (float)o.height, &view);
+    if (o.single_scatter && view.eta != 1.0f) {
         fprintf(stderr, "jade reference: --single-scatter traces light through an index-matched boundary: it needs --eta 1, "
-                        "not %g\n", (double)eta);
+                        "not %g\n", (double)view.eta);
         jd_session_close(&s);
         return 2;
     }

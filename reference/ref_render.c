@@ -364,10 +364,11 @@ static void leaving_light(const jd_ref *r, const float mo[3], const float loc[6]
  * (ref_single.h), added to what leaves the point seen, less what a
  * half-space lit as that point would scatter once: the local exit law
  * (leaving_light) already gives a half-space's whole reflection, first
- * order included, and keeps it where the point is lit; in the proportion
- * leaving_light kept of it. A model's colour scales it as the point's
- * diffused light (at entry and exit both: where the light entered is a
- * ray's length away, not looked up). */
+ * order included, wherever it holds the light's own beam (loc's first
+ * three: the point lit, its shadow ray already cast by hit_exitance); in
+ * the proportion leaving_light kept of it. A model's colour scales it as
+ * the point's diffused light (at entry and exit both: where the light
+ * entered is a ray's length away, not looked up). */
 static void add_single(const jd_ref *r, const jd_hit *hit, const float p[3], const float n[3], const float ng[3],
                        const float dir[3], const float mo[3], const float loc[6], uint32_t seed, float lo[3])
 {
@@ -378,10 +379,9 @@ static void add_single(const jd_ref *r, const jd_hit *hit, const float p[3], con
     if (jd_single_scatter(&r->single, p, ng, dir, r->light, e, seed, s1) < 0) return;
     if (r->d.mesh->colors) albedo_factor(r, hit->tri, hit->u, hit->v, fo);
     float mu0 = dot3(n, r->light), mu = -dot3(n, dir);
-    int lit = mu0 > 0 && mu > 0 && light_visible(r, p, ng);
     for (int k = 0; k < 3; k++) {
         float local = loc[k] + loc[3 + k], m = mo[k] > 0 ? mo[k] : 0.0f, keep = local > m ? m / local : 1.0f;
-        float own = lit ? keep * jd_single_halfspace(e, (float)r->dp.alpha[k], mu0, mu) : 0.0f;
+        float own = loc[k] > 0 ? keep * jd_single_halfspace(e, (float)r->dp.alpha[k], mu0, mu) : 0.0f;
         lo[k] = fmaxf(lo[k] + (s1[k] - own) * fo[k] * fo[k], 0.0f);
     }
 }

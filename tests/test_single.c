@@ -127,7 +127,6 @@ int main(void)
     CHECK(ret == 2 && fabs(got / want - 1) < 0.01, "two slabs back-lit: %.5f against %.5f", got, want);
 
     /* 4. A lone face: the first box's top face alone. */
-    bvh.num_tris = 0;
     jd_bvh_free(&bvh);
     memset(&bvh, 0, sizeof bvh);
     jd_error err = {0};
