@@ -60,22 +60,25 @@ void jd_gl_caps_recognise(jd_gl_caps *caps);
 /* Vertex texture units full's levels' sum per vertex reads: the light map
  * and the five levels. */
 #define JD_DIFFUSION_VERTEX_UNITS 6
-/* Texture units full takes in all when it sums them per vertex, its light
- * through thin parts' table among them, before a colour texture: one more
- * than a GPU of 8 (VideoCore IV) has beside one (render_program.c). */
+/* Texture units full takes in all when it sums them per vertex, the light
+ * map that its light scattered once reads (mesh.vert, jd_single_march)
+ * among them, before a colour texture: one more than a GPU of 8
+ * (VideoCore IV) has beside one (render_program.c). */
 #define JD_FULL_VERTEX_LEVELS_UNITS 8
 /* levels_per_fragment_from where a GPU sets it: the vertex count at which
  * the two paths cost the same by the frame-cost model at 1080p, taken from
  * the close-up, where the frame costs most (tools/frame-cost.sh's boards;
- * docs/frame-cost.md has the meshes measured). */
-#define JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM 3000
-#define JD_VC4_LEVELS_PER_FRAGMENT_FROM 16000
-#define JD_VIVANTE_LEVELS_PER_FRAGMENT_FROM 3000
+ * docs/frame-cost.md has the meshes measured). Halved and more since the
+ * sum per vertex marches the light scattered once through the light map
+ * (mesh.vert, jd_single_march): 3,000, 16,000 and 3,000 before. */
+#define JD_ADRENO3XX_LEVELS_PER_FRAGMENT_FROM 1100
+#define JD_VC4_LEVELS_PER_FRAGMENT_FROM 8000
+#define JD_VIVANTE_LEVELS_PER_FRAGMENT_FROM 1350
 /* Whether full's levels are summed in the vertex stage on this GPU for a
  * mesh of `vertices`, with a colour texture or not: where it reads all their
- * textures, has a unit left for the light through thin parts' table
- * (JD_FULL_VERTEX_LEVELS_UNITS, and one for the colour), and does not pay
- * less for the sum per fragment at a lower resolution from that size on
+ * textures, has a unit left for the light map its light scattered once
+ * reads (JD_FULL_VERTEX_LEVELS_UNITS, and one for the colour), and does not
+ * pay less for the sum per fragment at a lower resolution from that size on
  * (levels_per_fragment_from). The renderer's choice where it is not told
  * (jd_renderer_desc.levels), and jade info's lines. */
 int jd_gl_caps_levels_per_vertex(const jd_gl_caps *caps, unsigned vertices, int colour_texture);

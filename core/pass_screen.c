@@ -117,12 +117,33 @@ static void set_shade_uniforms(const jd_renderer *r, const shade_prog *p, const 
         }
         glUniform4fv(p->light_map_v, 1, f->light_map);
         glUniform3f(p->light_dir_v, f->light_dir.x, f->light_dir.y, f->light_dir.z);
-        if (p->slab >= 0 || p->slab_v >= 0) { /* unit 6: the wide buffer's, which these programs do not read */
-            float scale = 2.0f * f->mm_per_world / r->slab_range_mm;
-            glUniform1i(p->slab >= 0 ? p->slab : p->slab_v, 6);
-            glUniform1f(p->slab >= 0 ? p->slab_scale : p->slab_scale_v, scale);
+        if (p->slab >= 0) { /* unit 6: the wide buffer's, which these programs do not read */
+            glUniform1i(p->slab, 6);
+            glUniform1f(p->slab_scale, 2.0f * f->mm_per_world / r->slab_range_mm);
             glActiveTexture(GL_TEXTURE6);
             glBindTexture(GL_TEXTURE_2D, r->slab_tex);
+        }
+        if (p->light_depth_v >= 0) { /* unit 6 too: the levels summed per vertex read no slab table */
+            float st[3], ss[3], st_min = 1e30f;
+            for (int c = 0; c < 3; c++) {
+                st[c] = (float)f->dipole.sigma_t[c];
+                /* sigma_s / 4, and the light's way in at the boundary: the
+                 * Fresnel transmittance at normal incidence (the face the
+                 * light entered by is not known here). */
+                ss[c] = (float)(f->dipole.alpha[c] * f->dipole.sigma_t[c]) * 0.25f * (1.0f - f->f0);
+                if (st[c] > 0.0f && st[c] < st_min) st_min = st[c];
+            }
+            /* The march's reach: five mean free paths of the clearest
+             * channel; its start under a lit point: two light-map texels,
+             * finer than which the map's depths say nothing. */
+            float texel_mm = 2.0f * f->mm_per_world / f->light_map[0];
+            glUniform1i(p->light_depth_v, 6);
+            glUniform3fv(p->march_st, 1, st);
+            glUniform3fv(p->march_ss, 1, ss);
+            glUniform4f(p->march, f->mm_per_world, 2.0f * f->mm_per_world, st_min < 1e30f ? 5.0f / st_min : 0.0f,
+                        2.0f * texel_mm);
+            glActiveTexture(GL_TEXTURE6);
+            glBindTexture(GL_TEXTURE_2D, r->light.tex);
         }
         for (int i = 0; i < DIFF_TEXTURES; i++) {
             glUniform1i(p->lv[i] >= 0 ? p->lv[i] : p->lv_v[i], 1 + i);
@@ -380,8 +401,11 @@ void jdr_pass_main(jd_renderer *r, const jd_scene *s, const frame_params *f)
     set_shade_uniforms(r, &r->shade[s->mode], f, w, h);
     jdr_counted_read(r, &r->light, 1);
     if (s->mode == JD_MODE_FULL && !r->vertex_diffusion) jdr_counted_read(r, &r->wide_fill, 1);
-    if (s->mode == JD_MODE_FULL && r->vertex_diffusion)
+    if (s->mode == JD_MODE_FULL && r->vertex_diffusion) {
         for (int i = 0; i < r->diff_levels; i++) jdr_counted_read(r, &r->diff_lv[i], 1);
+        /* the light map itself, along the camera rays (jd_single_march) */
+        if (r->shade[s->mode].light_depth_v >= 0) jdr_counted_read(r, &r->light, 1);
+    }
     if (s->mode == JD_MODE_SINGLE || s->mode == JD_MODE_DUAL) jdr_counted_read(r, &r->irr[0], 6);
     if (s->mode == JD_MODE_DUAL) jdr_counted_read(r, &r->spread2, 1);
     /* The shading's alpha is not the picture's: shade.frag writes the luma

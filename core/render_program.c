@@ -110,9 +110,11 @@ static void shade_locations(shade_prog *p)
     p->wide_x = glGetUniformLocation(id, "u_wide_x");
     p->spec_x = glGetUniformLocation(id, "u_spec_x");
     p->slab = glGetUniformLocation(id, "u_slab");
-    p->slab_v = glGetUniformLocation(id, "u_slab_v");
     p->slab_scale = glGetUniformLocation(id, "u_slab_scale");
-    p->slab_scale_v = glGetUniformLocation(id, "u_slab_scale_v");
+    p->light_depth_v = glGetUniformLocation(id, "u_light_depth_v");
+    p->march_st = glGetUniformLocation(id, "u_march_st");
+    p->march_ss = glGetUniformLocation(id, "u_march_ss");
+    p->march = glGetUniformLocation(id, "u_march");
     p->keep = glGetUniformLocation(id, "u_keep");
     p->wrap = glGetUniformLocation(id, "u_wrap");
     p->bounce_rd = glGetUniformLocation(id, "u_bounce_rd");
@@ -220,13 +222,14 @@ static jd_result build_shade(jd_renderer *r, int m, jd_error *err)
              m == JD_MODE_FULL && r->vertex_diffusion,
              m == JD_MODE_FULL && !r->vertex_diffusion, r->albedo, r->albedo && map, r->albedo && map && r->albedo_partial,
              r->d.no_cull, r->d.caps->utgard != 0, z_scaled ? "#define JD_LIGHT_Z_SCALED 1\n" : "", spec,
-             /* Full summed per vertex reads the light map and five levels
-              * there, the light map and the colour texture per fragment:
-              * the light through thin parts' table is one sampler more,
-              * which a GPU of 8 units (VideoCore IV) has no room for with a
-              * colour texture; there full goes without it. Only when the
-              * sum per vertex is asked for: the renderer's own choice sums
-              * them per fragment there (renderer.c). */
+             /* Full summed per vertex reads the shadow map and five levels
+              * there, the shadow map and the colour texture per fragment:
+              * the light map itself, which the light scattered once reads
+              * along the camera ray (mesh.vert, jd_single_march), is one
+              * sampler more, which a GPU of 8 units (VideoCore IV) has no
+              * room for with a colour texture; there full goes without it.
+              * Only when the sum per vertex is asked for: the renderer's own
+              * choice sums them per fragment there (renderer.c). */
              m == JD_MODE_FULL && r->vertex_diffusion &&
                      JD_FULL_VERTEX_LEVELS_UNITS + (r->albedo && map) > r->d.caps->max_texture_units
                  ? "#define JD_NO_SLAB 1\n" : "",

@@ -113,10 +113,10 @@ static jd_result create(const jd_renderer_desc *desc, jd_arena *a, jd_renderer *
     r->vertex_thickness = !d->fragment_thickness && d->caps->max_vertex_texture_units >= 2;
     /* full's levels: the light map and the level textures per vertex, where
      * the GPU reads them there, does not pay less for the sum per fragment
-     * on a mesh of this size, and keeps full's light through thin parts
-     * beside them (gl_caps.h): asked for per vertex, a GPU of 8 texture
-     * units goes without it beside a colour texture (render_program.c,
-     * JD_NO_SLAB). */
+     * on a mesh of this size, and keeps full's light scattered once
+     * beside them (the light map read along the camera ray, mesh.vert;
+     * gl_caps.h): asked for per vertex, a GPU of 8 texture units goes
+     * without it beside a colour texture (render_program.c, JD_NO_SLAB). */
     _Static_assert(JD_DIFFUSION_VERTEX_UNITS == 1 + DIFF_TEXTURES, "the vertex stage's diffusion textures");
     if (d->levels < JD_LEVELS_AUTO || d->levels > JD_LEVELS_FRAGMENT)
         return jd_fail(err, JD_ERR_ARG, "levels %d must be auto, vertex or fragment", (int)d->levels);

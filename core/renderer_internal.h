@@ -63,7 +63,8 @@ typedef struct shade_prog {
     GLint amb_x, local_x, wide_x, spec_x; /* full's constant factors (shade.frag) */
     GLint light_map_v, light_dir_v, lv_v[DIFF_TEXTURES], wide;
     GLint albedo_norm, albedo_map, albedo_reach;
-    GLint slab, slab_v, slab_scale, slab_scale_v, keep, bounce_rd, wrap;
+    GLint slab, slab_scale, keep, bounce_rd, wrap;
+    GLint light_depth_v, march_st, march_ss, march; /* full per vertex: the light scattered once (mesh.vert, jd_single_march) */
     GLint soft_c; /* full: the exponential shadow map's exponent (light.glsl, jd_soft_lit) */
     GLint spec;   /* full, the levels read from the half-resolution pass: the highlight's table */
     int light_z_scaled; /* u_light_tex's depth row scaled and offset to the shadow test's exponent (mesh.vert) */

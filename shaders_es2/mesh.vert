@@ -101,8 +101,11 @@ uniform vec3 u_light_dir_v;
 uniform vec3 u_lw[5];
 uniform vec3 u_ls[2];
 #ifndef JD_NO_SLAB
-uniform sampler2D u_slab_v;    // the light through thin parts, by thickness (jd_slab_light)
-uniform float u_slab_scale_v; // light-depth units to its coordinate
+// The light scattered once on its way to the camera (jd_single_march).
+uniform sampler2D u_light_depth_v; // the light map itself (depth.frag), not the shadow map
+uniform vec3 u_march_st;     // sigma_t, per mm
+uniform vec3 u_march_ss;     // sigma_s / 4, per mm, times the light's way in through the boundary
+uniform vec4 u_march;        // mm per world unit, mm per light-depth unit, the march's reach and its start under a lit point (mm)
 #endif
 varying vec3 v_wide;
 #endif
@@ -132,6 +135,75 @@ varying vec3 v_light;
 #endif
 varying vec3 v_trans;        // A0 but the irradiance and (per fragment) the thickness term
 varying vec3 v_dir;          // where the irradiance is looked up
+#endif
+
+#if JD_FULL && JD_VERTEX_DIFFUSION && !defined(JD_NO_SLAB)
+// The light that reached the point l (light-map xy, depth) through the
+// medium, e^(-sigma_t d) per channel, d its depth below the light map's
+// surface in mm: over the four nearest texels, each texel's light weighed
+// bilinearly, and none from a texel whose surface lies behind the point
+// (the point is in the air there, outside the part; tol: how far behind
+// counts as on it, mm). The transmittances are mixed, not the depths: the
+// depths mixed (a tube's with what lies past its outline in the light's
+// view) were blotchier still, and one texel's depth at each point stepped
+// from vertex to vertex: the default asset's blotches 59% larger and its
+// flicker 56% (docs/quality.md, "Single scattering in full").
+vec3 jd_through(vec3 l, float tol)
+{
+    vec2 tc = l.xy * u_light_map_v.x - 0.5;
+    vec2 f = fract(tc);
+    vec2 b = l.xy - f * u_light_map_v.y;
+    float d = u_light_map_v.y;
+    vec4 dd = (l.z - vec4(jd_depth(texture2D(u_light_depth_v, b)), jd_depth(texture2D(u_light_depth_v, b + vec2(d, 0.0))),
+                          jd_depth(texture2D(u_light_depth_v, b + vec2(0.0, d))),
+                          jd_depth(texture2D(u_light_depth_v, b + vec2(d, d))))) * u_march.y;
+    vec2 g = 1.0 - f;
+    vec4 w = vec4(g.x * g.y, f.x * g.y, g.x * f.y, f.x * f.y) * step(vec4(-tol), dd);
+    dd = max(dd, 0.0);
+    return vec3(dot(w, exp(-u_march_st.r * dd)), dot(w, exp(-u_march_st.g * dd)), dot(w, exp(-u_march_st.b * dd)));
+}
+
+// The light scattered once on its way through the part to the camera
+// (Jensen et al. 2001's first order; jade reference --single-scatter
+// traces it): sigma_s / 4 times the integral along the camera ray, into the
+// part from the vertex, of e^(-sigma_t s) times the light that reached
+// the ray's point through the medium (jd_through): the translucent shadow
+// maps of Dachsbacher and Stamminger 2003, in the vertex stage. Three
+// steps to the reach, min(the part's thickness / |n.v|, 5 mean free paths
+// of the clearest channel): four gave the same figures, two a blotchier
+// default asset; between two steps the integrand taken as exponential
+// (exact where the depth to the light changes linearly along the ray: the
+// midpoint rule overshot marble's first millimetre). Less what the point's
+// own half-space scatters once, keep alpha / 4 mu0 / (mu0 + mu), which the
+// local part's albedo already holds. On a lit point the march starts a
+// little under it (u_march.w, two light-map texels) and the half-space's
+// figure is taken off only past there: finer than a texel the light map's
+// depths say nothing, and a millimetre of error in d is a factor 9 of
+// marble's light. In place of the slab's light through thin parts
+// (jd_slab_light), whose diffusion put the light that crosses a part in
+// patches where Cycles has it even (docs/quality.md, "Single scattering in
+// full": every back-lit case of the knot closer to Cycles, ketchup's most).
+vec3 jd_single_march(vec3 pos, vec3 vf, float thick, float ndv, float ndl, float lit, vec3 keep)
+{
+    float reach = min(thick * u_march.x / max(ndv, 0.25), u_march.z);
+    float s0 = min(u_march.w * max(lit, 0.0), reach), h = (reach - s0) / 3.0;
+    float tol = 0.5 * u_march.w;
+    // The light map's coordinates are affine in the world's: a step along
+    // the ray is a constant step there.
+    vec3 l = (u_light_tex * vec4(pos - vf * (s0 / u_march.x), 1.0)).xyz;
+    vec3 dl = (u_light_tex * vec4(-vf * (h / u_march.x), 0.0)).xyz;
+    vec3 f0 = max(exp(-u_march_st * s0) * jd_through(l, tol), 1e-6), sum = vec3(0.0);
+    for (int k = 1; k <= 3; k++) {
+        vec3 f1 = max(exp(-u_march_st * (s0 + float(k) * h)) * jd_through(l + float(k) * dl, tol), 1e-6);
+        vec3 x = log(f0 / f1);
+        sum += mix(f0, (f0 - f1) / x, step(vec3(1e-3), abs(x)));
+        f0 = f1;
+    }
+    float mu0 = max(ndl, 0.0);
+    vec3 own = max(lit, 0.0) * keep * (u_march_ss / max(u_march_st, 1e-6)) * mu0 / max(mu0 + ndv, 0.01) *
+               exp(-u_march_st * s0 * (1.0 + ndv / max(mu0, 0.05)));
+    return max(u_march_ss * sum * h - own, 0.0);
+}
 #endif
 
 void main()
@@ -220,7 +292,7 @@ void main()
 #ifndef JD_LIGHT_Z_SCALED
     v_shadow.z = sp.z * u_soft_c.x - 0.250;
 #endif
-#if (JD_VERTEX_DIFFUSION || JD_WIDE_ONLY) && !defined(JD_NO_SLAB)
+#if JD_WIDE_ONLY && !defined(JD_NO_SLAB)
     // Where the normal leaves the part (the far end of the thickness under
     // the vertex, mesh_thickness.c) in the light map, as the shadow test
     // takes it: the light that crossed a thin part comes only where that
@@ -230,15 +302,14 @@ void main()
     // dark blotch on the back-lit ketchup bunny's thigh, and that case 1.7%
     // further from the reference); 0.3, 0.5, 0.7 or 1 times the thickness
     // moved the bunny's back-lit cases by 0.8% at most (with the ramp of
-    // 3 to 3.67 times the thickness, light.glsl). These two programs take
-    // the depth row unscaled (JD_LIGHT_Z_SCALED is the picture's pass
-    // alone), so the exponent's scale is applied here. The form is lima's
-    // shortest of those tried: 52 words in the summing pass, 54, 57, 62.
-    vec3 exitp = v_shadow.xyz -
-                 thick * ((u_light_tex * vec4(an, 0.0)).xyz + vec3(0.0, 0.0, 0.25)) * vec3(1.0, 1.0, u_soft_c.x);
-#if JD_WIDE_ONLY
-    v_exit = exitp;
-#endif
+    // 3 to 3.67 times the thickness, light.glsl). This program takes the
+    // depth row unscaled (JD_LIGHT_Z_SCALED is the picture's pass alone),
+    // so the exponent's scale is applied here. The form is lima's shortest
+    // of those tried: 52 words in the summing pass, 54, 57, 62. (The levels
+    // summed per vertex take the light scattered once instead,
+    // jd_single_march.)
+    v_exit = v_shadow.xyz -
+             thick * ((u_light_tex * vec4(an, 0.0)).xyz + vec3(0.0, 0.0, 0.25)) * vec3(1.0, 1.0, u_soft_c.x);
 #endif
 #else
     // The light looks down its +z: a normal facing it has a negative z there.
@@ -314,11 +385,8 @@ void main()
     // half-space's: what went deep left through the far side.
     v_wide *= mix(vec3(1.0), keep, step(0.0, ndl));
 #ifndef JD_NO_SLAB
-    // A face the light does not reach takes what crossed the part from the
-    // lit face above it.
-    v_wide += jd_slab_light(u_lv1_v, u_slab_v, v_shadow.xy, v_shadow.w, u_slab_scale_v,
-                            dot(texture2D(u_depth_v, v_shadow.xy).xy, jd_bytes), thick * 0.5 * u_slab_scale_v, lit,
-                            jd_soft_lit(u_depth_v, exitp));
+    // The light scattered once on its way through the part to the camera.
+    v_wide += jd_single_march(pos, vf, thick, abs(dvf), ndl, lit, keep);
 #endif
     v_wide += bounce;
 #endif

@@ -96,9 +96,14 @@ while read -r mat light az el ref_today full_today wref_today wfull_today dref d
         within "$mat $light: the reference with a bounce, against the walk (measured $bwref_today)" "$bwref" "$(awk -v v="$bwref_today" 'BEGIN { printf "%.4f", 1.1 * v }')"
         closer "$mat $light: a bounce brings the reference closer to the medium" "$bref" "$ref"
         closer "$mat $light: a bounce brings the reference closer to the walk" "$bwref" "$wref"
-        # full carries the light between parts too (core/mesh_bounce.c):
-        # the reference that has it is the one to be closer than full.
-        closer "$mat $light: jade reference with light between parts closer than full to the medium" "$bref" "$full"
+        # full carries the light between parts too (core/mesh_bounce.c),
+        # and where it sums the levels per vertex, as here, the light
+        # scattered once (mesh.vert, jd_single_march): the reference that
+        # has both is the one to be closer than full (below). The one with
+        # the bounce alone was, until full took the light scattered once:
+        # printed.
+        if awk -v a="$bref" -v b="$full" 'BEGIN { exit !(a < b) }'; then echo "$mat $light: the reference with light between parts closer than full"
+        else echo "$mat $light: full closer than the reference with light between parts (it lacks single scattering)"; fi
         # Without the bounce the reference is closer than full in the
         # absorbing materials (skin1, ketchup), not in marble or whole milk,
         # whose light between parts full has and it lacks: printed, not
@@ -117,6 +122,7 @@ while read -r mat light az el ref_today full_today wref_today wfull_today dref d
             echo "$mat, $light-lit: jade reference with light between parts and single scattering: RMSE $sref against Cycles (best gain $(gain "$tmp/single.png" "$truth")), $swref against the walk"
             within "$mat $light: the reference with single scattering (measured $sref_today)" "$sref" "$(awk -v v="$sref_today" 'BEGIN { printf "%.4f", 1.1 * v }')"
             [ "$light" = back ] && closer "$mat back: single scattering brings the reference closer to the medium" "$sref" "$bref"
+            closer "$mat $light: jade reference with light between parts and single scattering closer than full to the medium" "$sref" "$full"
             singlesum=$(awk -v s="$singlesum" -v a="$sref" -v b="$bref" 'BEGIN { print s + log(a / b) }')
         else bad "jade reference --single-scatter did not run ($mat, $light)"; fi
     else bad "jade reference --bounces 1 did not run ($mat, $light)"; fi
@@ -134,22 +140,24 @@ while read -r mat light az el ref_today full_today wref_today wfull_today dref d
         closer "$mat back: full closer than none to the walk" "$wfull" "$wnone"
     fi
 done <<'CASES'
-marble front -30 40 0.0341 0.0297 0.0507 0.0341 0.0673 0.0493 0.0679 0.0221 0.0428 0.0663 0.0230
-marble back 170 35 0.0474 0.0408 0.0408 0.0250 0.0721 0.0561 0.0678 0.0281 0.0238 0.0669 0.0210
-skin1 front -30 40 0.0220 0.0318 0.0747 0.0512 0.0529 0.0838 0.0396 0.0180 0.0727 0.0403 0.0123
-skin1 back 170 35 0.0331 0.0437 0.0243 0.0247 0.0711 0.0494 0.0528 0.0288 0.0215 0.0504 0.0195
-ketchup front -30 40 0.0142 0.0200 0.0622 0.0676 0.0324 0.0811 0.0171 0.0129 0.0608 0.0160 0.0077
-ketchup back 170 35 0.0248 0.0352 0.0302 0.0389 0.0443 0.0508 0.0329 0.0240 0.0289 0.0277 0.0120
-wholemilk front -30 40 0.0338 0.0287 0.0453 0.0291 0.0672 0.0499 0.0677 0.0218 0.0375 0.0653 0.0234
-wholemilk back 170 35 0.0466 0.0379 0.0407 0.0239 0.0689 0.0545 0.0652 0.0260 0.0230 0.0649 0.0198
+marble front -30 40 0.0341 0.0296 0.0507 0.0330 0.0673 0.0493 0.0679 0.0221 0.0428 0.0663 0.0230
+marble back 170 35 0.0474 0.0391 0.0408 0.0257 0.0721 0.0561 0.0678 0.0281 0.0238 0.0669 0.0210
+skin1 front -30 40 0.0220 0.0312 0.0747 0.0471 0.0529 0.0838 0.0396 0.0180 0.0727 0.0403 0.0123
+skin1 back 170 35 0.0331 0.0330 0.0243 0.0227 0.0711 0.0494 0.0528 0.0288 0.0215 0.0504 0.0195
+ketchup front -30 40 0.0142 0.0163 0.0622 0.0629 0.0324 0.0811 0.0171 0.0129 0.0608 0.0160 0.0077
+ketchup back 170 35 0.0248 0.0200 0.0302 0.0281 0.0443 0.0508 0.0329 0.0240 0.0289 0.0277 0.0120
+wholemilk front -30 40 0.0338 0.0287 0.0453 0.0285 0.0672 0.0499 0.0677 0.0218 0.0375 0.0653 0.0234
+wholemilk back 170 35 0.0466 0.0370 0.0407 0.0244 0.0689 0.0545 0.0652 0.0260 0.0230 0.0649 0.0198
 CASES
 # full against none, the issue's measure (#28: 0.25 the target): 0.764
 # before full carried the light between parts, 0.693 then, 0.662 since its
 # local part is smoothed over the terminator (2026-12-07); those with one
-# sample a pixel. 0.583 with both at 3 x 3 samples (2026-12-07, later).
+# sample a pixel. 0.583 with both at 3 x 3 samples (2026-12-07, later);
+# 0.505 since full sums the light scattered once along the camera ray
+# (mesh.vert, jd_single_march; 2026-12-08).
 gm=$(awk -v s="$ratiosum" 'BEGIN { printf "%.3f", exp(s / 8) }')
 echo "full's RMSE over none's against the medium, geometric mean of 8: $gm (the target 0.25)"
-closer "full over none, geometric mean of 8" "$gm" 0.64
+closer "full over none, geometric mean of 8" "$gm" 0.56
 gm=$(awk -v s="$logsum" 'BEGIN { printf "%.3f", exp(s / 16) }')
 closer "the reference's RMSE over the dipole-albedo reference's, geometric mean of 16" "$gm" 0.9
 # Light carried across thin parts (Donner & Jensen's multipole, measured

@@ -87,10 +87,13 @@ else bad "the reference ($ref) is not smoother than none ($none): the measure se
 # with the 2x2 test before it), 0.0137 since its exponent is 0.25 a texel
 # of depth, 0.0132 since half of the first level rides with the local
 # part on lit points, 0.0128 since the levels count light within 3 sigma
-# of a texel's own depth as its surface's (pass_light.c): the goal, the
+# of a texel's own depth as its surface's (pass_light.c), 0.0133 since the
+# light through thin parts' changes of 2026-12-07, 0.0141 since full sums
+# the light scattered once along the camera ray (mesh.vert,
+# jd_single_march; docs/quality.md, "Single scattering in full"): the goal, the
 # reference's, is missed (docs/quality.md); the bound keeps it from growing
 # unseen. It stays where it was: an NVIDIA
 # H100 under 4x multisampling measured 0.0155 where llvmpipe gave 0.0151.
-if awk -v f="$full" 'BEGIN { exit !(f != "" && f <= 0.0158) }'; then ok "full's jerk $full <= 0.0158 (measured 0.0128)"
-else bad "full's jerk $full, over 0.0158 (measured 0.0128; the reference $ref)"; fi
+if awk -v f="$full" 'BEGIN { exit !(f != "" && f <= 0.0158) }'; then ok "full's jerk $full <= 0.0158 (measured 0.0141)"
+else bad "full's jerk $full, over 0.0158 (measured 0.0141; the reference $ref)"; fi
 finish flicker
