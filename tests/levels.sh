@@ -5,8 +5,8 @@
 # per fragment on large ones
 # (gl_caps.h, levels_per_fragment_from); per fragment on VideoCore IV with
 # a colour texture, where per vertex full would lose its light scattered
-# once (the light map is a sampler more); per vertex wherever else the vertex stage reads six textures;
-# per fragment where it does not. Asked for, either way, where the GPU can;
+# once (the light map is a sampler more); per vertex wherever else the
+# vertex stage reads six textures; per fragment where it does not. Asked for, either way, where the GPU can;
 # a one-line error where it cannot. The two ways give nearly one picture.
 jade=$1
 . "$(dirname "$0")/harness.sh"

@@ -31,6 +31,7 @@ done
 # shellcheck disable=SC2086
 "$jade" reference $scene --eta 1 --single-scatter --quiet --out "$tmp/ref1.png" --mask "$tmp/mask1.png" >/dev/null ||
     bad "jade reference --single-scatter did not run"
+# shellcheck disable=SC2086
 "$jade" render $scene --eta 1 --out "$tmp/device1.png" >/dev/null 2>&1 || bad "jade render (eta 1) did not run"
 r=$("$jade" metric "$tmp/device1.png" "$tmp/ref1.png" --mask "$tmp/mask1.png" | sed -n 's/.*"rmse": \([0-9.]*\).*/\1/p')
 if awk -v r="$r" 'BEGIN { exit !(r != "" && r <= 0.0245) }'; then ok "device: full's RMSE against the reference with single scattering $r <= 0.0245 (0.0340 with the slab's light)"
